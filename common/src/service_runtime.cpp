@@ -1,0 +1,77 @@
+#include "relplane/common/service_runtime.hpp"
+
+#include <relplane/status_t.hpp>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+
+namespace relplane {
+namespace {
+std::atomic<bool> g_stop{false};
+void OnSignal(int) { g_stop.store(true); }
+}  // namespace
+
+void InstallStopHandlers() {
+  struct sigaction action {};
+  action.sa_handler = OnSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+bool StopRequested() { return g_stop.load(); }
+void RequestStop() { g_stop.store(true); }
+
+int64_t MonotonicMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+int64_t WallMicros() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+void PublishStatus(bus::Bus& bus, ServiceStats& stats) {
+  const StatusSnapshot s = stats.Snapshot();
+  status_t msg;
+  msg.utime = WallMicros();
+  msg.service = stats.Service();
+  msg.frames_processed = s.frames_processed;
+  msg.frames_dropped = s.frames_dropped;
+  msg.inputs_rejected = s.inputs_rejected;
+  msg.p50_ms = static_cast<float>(s.p50_ms);
+  msg.p99_ms = static_cast<float>(s.p99_ms);
+  msg.max_ms = static_cast<float>(s.max_ms);
+  msg.last_seq = s.last_seq;
+  msg.detail = s.detail;
+  bus::Publish(bus, "STATUS", msg);
+}
+
+int RunService(bus::Bus& bus, ServiceStats& stats, const std::function<bool()>& done,
+               const std::function<void()>& on_idle) {
+  int64_t next_status = MonotonicMicros() + 1000000;
+  int result = 0;
+  while (!StopRequested() && !(done && done())) {
+    if (bus.Handle(100) < 0) {
+      spdlog::error("the LCM bus failed; stopping");
+      result = 1;
+      break;
+    }
+    if (on_idle) on_idle();
+    if (MonotonicMicros() >= next_status) {
+      PublishStatus(bus, stats);
+      next_status += 1000000;
+    }
+  }
+  PublishStatus(bus, stats);
+  spdlog::info("stopping: {} processed, {} dropped, {} rejected", stats.Processed(),
+               stats.Dropped(), stats.Rejected());
+  return result;
+}
+
+}  // namespace relplane
