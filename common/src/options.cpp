@@ -56,13 +56,14 @@ Reader Reader::FromString(const std::string& yaml, const std::string& name,
   } catch (const YAML::ParserException& e) {
     throw ConfigError(name + ":" + std::to_string(e.mark.line + 1) + ": invalid YAML: " + e.msg);
   }
-  if (doc.IsNull()) doc = YAML::Node(YAML::NodeType::Map);
+  // yaml-cpp's Node::operator= writes through to the node it refers to; reset() rebinds.
+  if (doc.IsNull()) doc.reset(YAML::Node(YAML::NodeType::Map));
   if (!doc.IsMap()) throw ConfigError(name + ":1: expected a mapping of keys at the top level");
-  state->root = doc;
+  state->root.reset(doc);
   if (section.empty()) return Reader(state, doc, "");
   Reader top(state, doc, "");
   Reader sub = top.Child(section);
-  state->root = sub.node_;
+  state->root.reset(sub.node_);
   state->root_path = section;
   return sub;
 }
@@ -92,7 +93,8 @@ int Reader::LineOf(const std::string& key) const {
 
 YAML::Node Reader::Lookup(const std::string& key) {
   state_->asked[path_].insert(key);
-  if (!Has(key)) return YAML::Node();
+  // An invalid node, not YAML::Node(): a default-constructed node counts as defined.
+  if (!Has(key)) return YAML::Node(YAML::NodeType::Undefined);
   state_->read.insert(KeyPath(key));
   return node_[key];
 }
@@ -142,10 +144,10 @@ void Reader::CheckUnread(const YAML::Node& node, const std::string& path) const 
       const auto asked = state_->asked.find(path);
       if (asked != state_->asked.end()) {
         std::string best;
-        size_t best_distance = 3;  // suggest only close matches
+        size_t best_distance = 3;  // suggest only close matches, and not for one-letter keys
         for (const auto& candidate : asked->second) {
           const size_t distance = EditDistance(key, candidate);
-          if (distance < best_distance) {
+          if (distance < best_distance && 2 * distance < std::max(key.size(), candidate.size())) {
             best_distance = distance;
             best = candidate;
           }

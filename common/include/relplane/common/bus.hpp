@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "relplane/common/encoded_lengths.hpp"
+
 namespace relplane::bus {
 
 class Bus {
@@ -59,6 +61,10 @@ bool Decode(const uint8_t* data, size_t size, M* out, std::string* reason,
   }
   if (size > static_cast<size_t>(std::numeric_limits<int>::max())) {
     *reason = "message too large to decode";
+    return false;
+  }
+  if (!CheckEncodedLengths(static_cast<const M*>(nullptr), data, size, reason)) {
+    *reason = "undecodable: " + *reason;
     return false;
   }
   try {
