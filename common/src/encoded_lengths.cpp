@@ -66,7 +66,24 @@ bool WalkPlanes(Cursor& c, std::string* reason) {
   return true;
 }
 
+bool WalkString(Cursor& c, std::string* reason, const char* what) {
+  int32_t length = 0;
+  if (!c.ReadLength(1, &length, reason, what)) return false;
+  // Encoded LCM strings carry their terminating NUL, so the length is at least one.
+  if (length < 1) return Cursor::Fail(reason, "zero length of ", what);
+  return c.Skip(static_cast<size_t>(length));
+}
+
 }  // namespace
+
+bool CheckEncodedLengths(const status_t*, const uint8_t* data, size_t size, std::string* reason) {
+  Cursor c(data, size);
+  if (!c.Skip(kHash + 8)) return Cursor::Fail(reason, "truncated ", "status_t");
+  if (!WalkString(c, reason, "status_t.service")) return false;
+  // frames_processed, frames_dropped, inputs_rejected, p50/p99/max, last_seq
+  if (!c.Skip(8 * 3 + 4 * 3 + 8)) return Cursor::Fail(reason, "truncated ", "status_t");
+  return WalkString(c, reason, "status_t.detail");
+}
 
 bool CheckEncodedLengths(const point_cloud_t*, const uint8_t* data, size_t size,
                          std::string* reason) {

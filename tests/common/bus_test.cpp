@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <relplane/pose_t.hpp>
+#include <relplane/status_t.hpp>
 #include <relplane/map_t.hpp>
 #include <relplane/point_cloud_t.hpp>
 
@@ -130,6 +131,29 @@ TEST(Decode, MapRoundTripsAndHostileNestedLengthsAreRefused) {
   for (size_t cut = 0; cut < buf.size(); ++cut) {
     EXPECT_FALSE(Decode(buf.data(), cut, &out, &reason)) << cut;
   }
+}
+
+}  // namespace
+}  // namespace relplane::bus
+
+namespace relplane::bus {
+namespace {
+
+TEST(Decode, StatusRoundTripsAndZeroStringLengthIsRefused) {
+  status_t status{};
+  status.service = "relplane-test";
+  status.detail = "";
+  status.last_seq = 7;
+  std::vector<uint8_t> buf(status.getEncodedSize());
+  status.encode(buf.data(), 0, buf.size());
+  status_t out;
+  std::string reason;
+  ASSERT_TRUE(Decode(buf.data(), buf.size(), &out, &reason)) << reason;
+  EXPECT_EQ(out.service, "relplane-test");
+  EXPECT_EQ(out.last_seq, 7);
+  // The service string's length field follows the hash and utime.
+  buf[16] = buf[17] = buf[18] = buf[19] = 0;
+  EXPECT_FALSE(Decode(buf.data(), buf.size(), &out, &reason));
 }
 
 }  // namespace

@@ -12,6 +12,7 @@ namespace relplane {
 struct point_cloud_t;
 struct plane_set_t;
 struct map_t;
+struct status_t;
 }  // namespace relplane
 
 namespace relplane::bus {
@@ -27,5 +28,7 @@ bool CheckEncodedLengths(const point_cloud_t*, const uint8_t* data, size_t size,
 bool CheckEncodedLengths(const plane_set_t*, const uint8_t* data, size_t size,
                          std::string* reason);
 bool CheckEncodedLengths(const map_t*, const uint8_t* data, size_t size, std::string* reason);
+// Strings: lcm-gen subtracts one from the declared length without checking it is positive.
+bool CheckEncodedLengths(const status_t*, const uint8_t* data, size_t size, std::string* reason);
 
 }  // namespace relplane::bus
