@@ -1,0 +1,80 @@
+#include "plan.hpp"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+
+#include "lines.hpp"
+
+namespace relplane::launch {
+namespace {
+
+TEST(StopOrderTest, SourceFirstThenPipelineFromItsHead) {
+  EXPECT_EQ(StopOrder({"logger", "mapper", "sim", "segmenter"}),
+            (std::vector<std::string>{"sim", "segmenter", "mapper", "logger"}));
+  EXPECT_EQ(StopOrder({"extra", "mapper", "sim"}),
+            (std::vector<std::string>{"sim", "mapper", "extra"}));
+  EXPECT_TRUE(StopOrder({}).empty());
+}
+
+TEST(StartOrderTest, SourceLastSoSubscribersHearItsFirstMessage) {
+  EXPECT_EQ(StartOrder({"sim", "segmenter", "mapper", "logger"}),
+            (std::vector<std::string>{"segmenter", "mapper", "logger", "sim"}));
+  EXPECT_EQ(StartOrder({"mapper"}), std::vector<std::string>{"mapper"});
+}
+
+TEST(ServiceCommandTest, ConfigUrlAndPerServiceFlags) {
+  LaunchOptions options;
+  const ChildSpec mapper =
+      ServiceCommand("mapper", "/b", "/r/scenario.yaml", "udpm://x:1", "/r", options);
+  EXPECT_EQ(mapper.argv, (std::vector<std::string>{"/b/relplane-mapper", "--config",
+                                                   "/r/scenario.yaml", "--lcm-url", "udpm://x:1"}));
+  const ChildSpec logger = ServiceCommand("logger", "/b", "/r/s.yaml", "u", "/r", options);
+  EXPECT_EQ(logger.argv.back(), "/r");
+  EXPECT_EQ(logger.argv[logger.argv.size() - 2], "--out");
+
+  EXPECT_EQ(ServiceCommand("sim", "/b", "s", "u", "/r", options).argv.size(), 5u);
+  options.rate_hz = 0;
+  const ChildSpec sim = ServiceCommand("sim", "/b", "s", "u", "/r", options);
+  EXPECT_EQ(sim.argv[sim.argv.size() - 2], "--rate");
+  EXPECT_EQ(sim.argv.back(), "0");
+}
+
+TEST(RecorderCommandTest, UsesTheLongUrlFlag) {
+  const ChildSpec recorder = RecorderCommand("/usr/bin/lcm-logger", "udpm://g:5", "/r");
+  EXPECT_EQ(recorder.argv, (std::vector<std::string>{"/usr/bin/lcm-logger", "--lcm-url=udpm://g:5",
+                                                     "--force", "/r/bus.lcmlog"}));
+}
+
+TEST(DefaultRunDirTest, NameAndUtcTimestamp) {
+  EXPECT_EQ(DefaultRunDir("runs", "hallway_loop", 1795426530),
+            "runs/hallway_loop-20261123T093530Z");
+}
+
+TEST(DescribeExitTest, CodesAndSignals) {
+  EXPECT_EQ(DescribeExit(3 << 8), "exited with code 3");
+  const std::string killed = DescribeExit(SIGKILL);
+  EXPECT_EQ(killed.rfind("was killed by signal 9", 0), 0u) << killed;
+}
+
+TEST(LineSplitterTest, WholeLinesAcrossChunks) {
+  LineSplitter splitter;
+  EXPECT_TRUE(splitter.Feed("hel", 3).empty());
+  EXPECT_EQ(splitter.Feed("lo\r\nwor", 7), std::vector<std::string>{"hello"});
+  EXPECT_EQ(splitter.Feed("ld\n\n", 4), (std::vector<std::string>{"world", ""}));
+  EXPECT_TRUE(splitter.Flush().empty());
+  splitter.Feed("tail", 4);
+  EXPECT_EQ(splitter.Flush(), std::vector<std::string>{"tail"});
+}
+
+TEST(LineSplitterTest, OverlongLinesAreCut) {
+  LineSplitter splitter;
+  const std::string big(LineSplitter::kMaxLine + 10, 'x');
+  const auto lines = splitter.Feed(big.data(), big.size());
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0].size(), LineSplitter::kMaxLine);
+  EXPECT_EQ(splitter.Flush()[0].size(), 10u);
+}
+
+}  // namespace
+}  // namespace relplane::launch

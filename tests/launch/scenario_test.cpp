@@ -1,0 +1,136 @@
+#include "scenario.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+#include "relplane/common/options.hpp"
+
+namespace relplane::launch {
+namespace {
+
+// Writes `text` to a temporary scenario file and returns its path.
+std::string WriteScenario(const std::string& text) {
+  char path[] = "/tmp/relplane-launch-test-XXXXXX";
+  const int fd = mkstemp(path);
+  EXPECT_GE(fd, 0);
+  std::ofstream(path) << text;
+  close(fd);
+  return path;
+}
+
+std::string LoadError(const std::string& text, std::string* file) {
+  *file = WriteScenario(text);
+  try {
+    LoadScenario(*file);
+  } catch (const config::ConfigError& e) {
+    std::remove(file->c_str());
+    return e.what();
+  }
+  std::remove(file->c_str());
+  return "";
+}
+
+TEST(LoadScenarioTest, AcceptsEveryKnownTopLevelKey) {
+  const std::string file = WriteScenario(
+      "name: hall\ndescription: a hall\nlaunch: {services: [sim]}\nexpect: {}\n"
+      "sim: {rate_hz: 30}\nsegmenter:\nmapper: {}\nlogger: {}\n");
+  const YAML::Node doc = LoadScenario(file);
+  EXPECT_EQ(doc["sim"]["rate_hz"].as<int>(), 30);
+  std::remove(file.c_str());
+}
+
+TEST(LoadScenarioTest, UnknownTopLevelKeyNamesFileLineAndKey) {
+  std::string file;
+  const std::string error = LoadError("name: x\nsim: {}\n\nsimm: {rate_hz: 3}\n", &file);
+  EXPECT_EQ(error, file + ":4: key 'simm': unknown top-level key (did you mean 'sim'?)");
+}
+
+TEST(LoadScenarioTest, UnknownKeyFarFromAnyListsTheKnownKeys) {
+  std::string file;
+  const std::string error = LoadError("wibble: 1\n", &file);
+  EXPECT_NE(error.find(":1: key 'wibble': unknown top-level key (known: name"), std::string::npos)
+      << error;
+}
+
+TEST(LoadScenarioTest, SectionMustBeAMapping) {
+  std::string file;
+  const std::string error = LoadError("name: x\nmapper: 3\n", &file);
+  EXPECT_EQ(error, file + ":2: key 'mapper': expected a mapping of keys");
+}
+
+TEST(LoadScenarioTest, NameMustBeAString) {
+  std::string file;
+  const std::string error = LoadError("name: [a, b]\n", &file);
+  EXPECT_EQ(error, file + ":1: key 'name': expected a string");
+}
+
+TEST(LoadScenarioTest, MissingFileIsOneLine) {
+  try {
+    LoadScenario("/nonexistent/scenario.yaml");
+    FAIL() << "no error";
+  } catch (const config::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/scenario.yaml: cannot open the file");
+  }
+}
+
+TEST(LoadScenarioTest, InvalidYamlNamesTheLine) {
+  std::string file;
+  const std::string error = LoadError("name: x\nsim: {a: [1, 2}\n", &file);
+  EXPECT_EQ(error.rfind(file + ":2: invalid YAML", 0), 0u) << error;
+}
+
+TEST(ReadLaunchOptionsTest, DefaultsWithoutSection) {
+  const LaunchOptions options = ReadLaunchOptions("name: x\n", "s.yaml");
+  EXPECT_EQ(options.services, std::vector<std::string>{"sim"});
+  EXPECT_LT(options.rate_hz, 0.0);
+}
+
+TEST(ReadLaunchOptionsTest, ReadsEveryKey) {
+  const LaunchOptions options = ReadLaunchOptions(
+      "launch:\n  services: [sim, segmenter]\n  grace_s: 1.5\n  drain_s: 0\n  rate_hz: 0\n",
+      "s.yaml");
+  EXPECT_EQ(options.services, (std::vector<std::string>{"sim", "segmenter"}));
+  EXPECT_DOUBLE_EQ(options.grace_s, 1.5);
+  EXPECT_DOUBLE_EQ(options.drain_s, 0.0);
+  EXPECT_DOUBLE_EQ(options.rate_hz, 0.0);
+}
+
+TEST(ReadLaunchOptionsTest, RejectsTyposAndBadValues) {
+  const auto error = [](const std::string& text) -> std::string {
+    try {
+      ReadLaunchOptions(text, "s.yaml");
+    } catch (const config::ConfigError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error("launch:\n  servises: [sim]\n"),
+            "s.yaml:2: unknown key 'launch.servises' (did you mean 'services'?)");
+  EXPECT_EQ(error("launch:\n  grace_s: 0\n"), "s.yaml:2: key 'launch.grace_s': must be > 0");
+  EXPECT_EQ(error("launch:\n  rate_hz: -1\n"),
+            "s.yaml:2: key 'launch.rate_hz': must be >= 0 (0: as fast as the bus allows)");
+  EXPECT_EQ(error("launch:\n  services: [sim, sim]\n"),
+            "s.yaml:2: key 'launch.services': 'sim' is listed twice");
+  EXPECT_EQ(error("launch:\n  services: [../x]\n"),
+            "s.yaml:2: key 'launch.services': '../x' is not a service name");
+  EXPECT_EQ(error("launch:\n  services: sim\n"),
+            "s.yaml:2: key 'launch.services': expected a list of strings");
+}
+
+TEST(ScenarioNameTest, NameKeyElseStemMadeSafe) {
+  EXPECT_EQ(ScenarioName(YAML::Load("name: hallway loop/2"), "a/b.yaml"), "hallway_loop_2");
+  EXPECT_EQ(ScenarioName(YAML::Load("sim: {}"), "scenarios/office.yaml"), "office");
+  EXPECT_EQ(ScenarioName(YAML::Load("name: ..."), "x.yaml"), "scenario...");
+}
+
+TEST(ClosestKeyTest, OnlyCloseMatches) {
+  EXPECT_EQ(ClosestKey("mappr", TopLevelKeys()), "mapper");
+  EXPECT_EQ(ClosestKey("zzzzzz", TopLevelKeys()), "");
+}
+
+}  // namespace
+}  // namespace relplane::launch

@@ -1,0 +1,79 @@
+#include "plan.hpp"
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstring>
+#include <sstream>
+
+namespace relplane::launch {
+namespace {
+std::string FormatNumber(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+}  // namespace
+
+ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
+                         const std::string& scenario_file, const std::string& url,
+                         const std::string& run_dir, const LaunchOptions& options) {
+  ChildSpec spec;
+  spec.name = name;
+  spec.argv = {bin_dir + "/relplane-" + name, "--config", scenario_file, "--lcm-url", url};
+  if (name == "logger") spec.argv.insert(spec.argv.end(), {"--out", run_dir});
+  if (name == kSourceService && options.rate_hz >= 0.0) {
+    spec.argv.insert(spec.argv.end(), {"--rate", FormatNumber(options.rate_hz)});
+  }
+  return spec;
+}
+
+ChildSpec RecorderCommand(const std::string& lcm_logger, const std::string& url,
+                          const std::string& run_dir) {
+  // The long form: the short -l flag is broken in LCM 1.3.1 (DESIGN.md).
+  return {"lcm-logger", {lcm_logger, "--lcm-url=" + url, "--force", run_dir + "/bus.lcmlog"}};
+}
+
+std::vector<std::string> StopOrder(const std::vector<std::string>& services) {
+  std::vector<std::string> order;
+  for (const std::string& name :
+       {kSourceService, std::string("segmenter"), std::string("mapper"), std::string("logger")}) {
+    if (std::find(services.begin(), services.end(), name) != services.end()) order.push_back(name);
+  }
+  for (const std::string& name : services) {
+    if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
+  }
+  return order;
+}
+
+std::vector<std::string> StartOrder(const std::vector<std::string>& services) {
+  std::vector<std::string> order;
+  for (const std::string& name : services) {
+    if (name != kSourceService) order.push_back(name);
+  }
+  if (std::find(services.begin(), services.end(), kSourceService) != services.end()) {
+    order.push_back(kSourceService);
+  }
+  return order;
+}
+
+std::string DefaultRunDir(const std::string& root, const std::string& name, std::time_t now) {
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", &utc);
+  return root + "/" + name + "-" + stamp;
+}
+
+std::string DescribeExit(int wait_status) {
+  if (WIFEXITED(wait_status)) return "exited with code " + std::to_string(WEXITSTATUS(wait_status));
+  if (WIFSIGNALED(wait_status)) {
+    const int sig = WTERMSIG(wait_status);
+    const char* text = strsignal(sig);
+    return "was killed by signal " + std::to_string(sig) +
+           (text ? " (" + std::string(text) + ")" : "");
+  }
+  return "ended (status " + std::to_string(wait_status) + ")";
+}
+
+}  // namespace relplane::launch

@@ -1,0 +1,47 @@
+#pragma once
+// Pure decisions of a run: which command lines to start, in which order to stop them, where
+// the run folder goes, and how a child's end reads in a report.
+
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "scenario.hpp"
+
+namespace relplane::launch {
+
+// The service whose normal end (exit 0) ends the run.
+inline const std::string kSourceService = "sim";
+
+// One process of the run: a name for its output prefix and its command line.
+struct ChildSpec {
+  std::string name;
+  std::vector<std::string> argv;  // argv[0] is the executable's path
+};
+
+// The command line of service `name`: relplane-NAME --config SCENARIO --lcm-url URL, plus
+// --out RUN for the logger and --rate for the simulator when the scenario sets launch.rate_hz.
+ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
+                         const std::string& scenario_file, const std::string& url,
+                         const std::string& run_dir, const LaunchOptions& options);
+
+// The recorder: lcm-logger writing every channel of `url` to RUN/bus.lcmlog.
+ChildSpec RecorderCommand(const std::string& lcm_logger, const std::string& url,
+                          const std::string& run_dir);
+
+// Services in the order they are stopped: the source first (so no new data enters), then the
+// pipeline from its head (segmenter, mapper, logger) so each stage sees its input's end, then
+// anything else in the order listed. The recorder is stopped after all of these.
+std::vector<std::string> StopOrder(const std::vector<std::string>& services);
+
+// Services in the order they are started: every other service first, so their subscriptions
+// exist before the source publishes, the source last.
+std::vector<std::string> StartOrder(const std::vector<std::string>& services);
+
+// ROOT/NAME-YYYYmmddTHHMMSSZ (UTC).
+std::string DefaultRunDir(const std::string& root, const std::string& name, std::time_t now);
+
+// "exited with code 3", "was killed by signal 9 (Killed)", from a waitpid status.
+std::string DescribeExit(int wait_status);
+
+}  // namespace relplane::launch

@@ -1,0 +1,135 @@
+#include "scenario.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+#include "relplane/common/options.hpp"
+
+namespace relplane::launch {
+namespace {
+
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1u : 0u)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string ReadText(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw config::ConfigError(file + ": cannot open the file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string Stem(const std::string& file) {
+  std::string base = file.substr(file.find_last_of('/') + 1);
+  const size_t dot = base.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
+}
+
+}  // namespace
+
+const std::vector<std::string>& TopLevelKeys() {
+  static const std::vector<std::string> keys = {"name", "description", "launch", "expect",
+                                                "sim",  "segmenter",   "mapper", "logger"};
+  return keys;
+}
+
+std::string ClosestKey(const std::string& key, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t best_distance = 3;  // only close matches are suggestions
+  for (const std::string& candidate : candidates) {
+    const size_t distance = EditDistance(key, candidate);
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+YAML::Node LoadScenario(const std::string& file) {
+  const std::string text = ReadText(file);
+  // The options loader parses the text and formats every message as FILE:LINE: key '...'.
+  config::Reader top = config::Reader::FromString(text, file);
+  const YAML::Node doc = YAML::Load(text);
+  if (doc.IsNull()) top.Fail("name", "the scenario is empty");
+  const std::vector<std::string>& known = TopLevelKeys();
+  for (const auto& entry : doc) {
+    const std::string key = entry.first.Scalar();
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    const std::string closest = ClosestKey(key, known);
+    top.Fail(key, "unknown top-level key" +
+                      (closest.empty() ? std::string(" (known: name, description, launch, "
+                                                     "expect, sim, segmenter, mapper, logger)")
+                                       : " (did you mean '" + closest + "'?)"));
+  }
+  std::string ignored;
+  top.Read("name", &ignored);
+  top.Read("description", &ignored);
+  for (const char* section : {"launch", "expect", "sim", "segmenter", "mapper", "logger"}) {
+    if (doc[section] && !doc[section].IsNull() && !doc[section].IsMap()) {
+      top.Fail(section, "expected a mapping of keys");
+    }
+  }
+  return doc;
+}
+
+LaunchOptions ReadLaunchOptions(const std::string& yaml_text, const std::string& name) {
+  LaunchOptions options;
+  config::Reader reader = config::Reader::FromString(yaml_text, name, "launch");
+  reader.Read("services", &options.services);
+  reader.Read("grace_s", &options.grace_s);
+  reader.Read("drain_s", &options.drain_s);
+  reader.Read("rate_hz", &options.rate_hz);
+  reader.Finish();
+  for (size_t i = 0; i < options.services.size(); ++i) {
+    const std::string& service = options.services[i];
+    if (service.empty() || service.find_first_of("/ \t") != std::string::npos) {
+      reader.Fail("services", "'" + service + "' is not a service name");
+    }
+    if (std::find(options.services.begin(), options.services.begin() + i, service) !=
+        options.services.begin() + i) {
+      reader.Fail("services", "'" + service + "' is listed twice");
+    }
+  }
+  if (!(options.grace_s > 0.0)) reader.Fail("grace_s", "must be > 0");
+  if (!(options.drain_s >= 0.0)) reader.Fail("drain_s", "must be >= 0");
+  if (reader.Has("rate_hz") && !(options.rate_hz >= 0.0)) {
+    reader.Fail("rate_hz", "must be >= 0 (0: as fast as the bus allows)");
+  }
+  return options;
+}
+
+std::string ScenarioName(const YAML::Node& doc, const std::string& file) {
+  std::string name = Stem(file);
+  if (doc.IsMap() && doc["name"] && doc["name"].IsScalar() && !doc["name"].Scalar().empty()) {
+    name = doc["name"].Scalar();
+  }
+  for (char& c : name) {
+    const bool safe =
+        std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+    if (!safe) c = '_';
+  }
+  return name.empty() || name[0] == '.' ? "scenario" + name : name;
+}
+
+std::string ToYaml(const YAML::Node& doc) {
+  YAML::Emitter out;
+  out << doc;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace relplane::launch

@@ -1,0 +1,33 @@
+#pragma once
+// Starts the processes of one run, passes their output on line by line with their names, and
+// stops them in order when the source finishes, a child dies, or the launcher is interrupted.
+
+#include <string>
+#include <vector>
+
+#include "plan.hpp"
+
+namespace relplane::launch {
+
+struct SupervisorOptions {
+  double grace_s = 3.0;           // SIGINT -> SIGTERM -> SIGKILL spacing
+  double drain_s = 1.0;           // after the source's end, before stopping the services
+  double recorder_drain_s = 0.5;  // before stopping the recorder (it drops its queue on SIGINT)
+  double ready_timeout_s = 3.0;   // longest wait for the subscribers before the source starts
+  int bus_port = -1;              // udpm port of the run, to see subscribers bind; -1: unknown
+};
+
+// Exit codes of a run.
+constexpr int kExitOk = 0;
+constexpr int kExitFailed = 1;         // a child failed, died unexpectedly or would not start
+constexpr int kExitInterrupted = 130;  // SIGINT/SIGTERM/SIGHUP to the launcher
+
+// Runs `recorder` then `services` (already in start order; the one named kSourceService last)
+// and supervises them to the end. Returns one of the exit codes above. No child outlives it.
+int Supervise(const ChildSpec& recorder, const std::vector<ChildSpec>& services,
+              const SupervisorOptions& options);
+
+// The launcher's own report lines ("[launch] ...", on stderr).
+void Say(const std::string& message);
+
+}  // namespace relplane::launch
