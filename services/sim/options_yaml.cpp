@@ -1,0 +1,195 @@
+#include "options_yaml.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace relplane::sim {
+
+namespace {
+
+using config::Reader;
+
+template <int N>
+void ReadVector(Reader& r, const std::string& key, Eigen::Matrix<double, N, 1>* out) {
+  if (!r.Has(key)) return;
+  std::vector<double> values;
+  r.Read(key, &values);
+  if (values.size() != N) r.Fail(key, "expected a list of " + std::to_string(N) + " numbers");
+  for (int i = 0; i < N; ++i) (*out)[i] = values[i];
+}
+
+void RequirePositive(Reader& r, const std::string& key, double value) {
+  if (!(value > 0.0)) r.Fail(key, "must be positive");
+}
+
+void RequireNonNegative(Reader& r, const std::string& key, double value) {
+  if (!(value >= 0.0)) r.Fail(key, "must not be negative");
+}
+
+GeneratorSpec ReadGenerator(Reader& r) {
+  std::string type;
+  r.ReadRequired("type", &type);
+  if (type == "straight_hallway") {
+    StraightHallwayParams p;
+    r.Read("length", &p.length);
+    r.Read("width", &p.width);
+    r.Read("start", &p.start);
+    r.Read("closed_ends", &p.closed_ends);
+    RequirePositive(r, "length", p.length);
+    RequirePositive(r, "width", p.width);
+    return p;
+  }
+  if (type == "hallway_loop") {
+    HallwayLoopParams p;
+    ReadVector(r, "size", &p.size);
+    r.Read("width", &p.width);
+    RequirePositive(r, "width", p.width);
+    if (!(p.size.minCoeff() > 2.0 * p.width)) r.Fail("size", "must exceed twice the width");
+    return p;
+  }
+  if (type == "office") {
+    OfficeParams p;
+    std::vector<double> rooms;
+    if (r.Has("rooms")) {
+      r.Read("rooms", &rooms);
+      if (rooms.size() != 2 || rooms[0] < 1 || rooms[1] < 1 || rooms[0] != std::floor(rooms[0]) ||
+          rooms[1] != std::floor(rooms[1])) {
+        r.Fail("rooms", "expected two whole numbers of rooms, each at least 1");
+      }
+      p.rooms = Eigen::Vector2i(static_cast<int>(rooms[0]), static_cast<int>(rooms[1]));
+    }
+    ReadVector(r, "room_size", &p.room_size);
+    r.Read("door_width", &p.door_width);
+    r.Read("door_height", &p.door_height);
+    r.Read("frame_depth", &p.frame_depth);
+    if (!(p.room_size.minCoeff() > 0.0)) r.Fail("room_size", "must be positive");
+    RequirePositive(r, "door_width", p.door_width);
+    if (!(p.door_width < p.room_size.minCoeff())) {
+      r.Fail("door_width", "must be narrower than the rooms");
+    }
+    RequirePositive(r, "door_height", p.door_height);
+    RequireNonNegative(r, "frame_depth", p.frame_depth);
+    return p;
+  }
+  r.Fail("type", "unknown generator '" + type + "' (straight_hallway, hallway_loop, office)");
+}
+
+void ReadWorld(Reader r, WorldOptions* w) {
+  r.Read("height", &w->height);
+  RequirePositive(r, "height", w->height);
+  r.Read("floor", &w->floor);
+  r.Read("ceiling", &w->ceiling);
+  // Any explicit content replaces the default world.
+  if (r.Has("generators") || r.Has("walls") || r.Has("rectangles")) w->generators.clear();
+  for (Reader& g : r.Children("generators")) w->generators.push_back(ReadGenerator(g));
+  for (Reader& s : r.Children("walls")) {
+    WallSpec wall;
+    if (!s.Has("from")) s.Fail("from", "missing required key");
+    if (!s.Has("to")) s.Fail("to", "missing required key");
+    ReadVector(s, "from", &wall.from);
+    ReadVector(s, "to", &wall.to);
+    s.Read("base", &wall.base);
+    s.Read("height", &wall.height);
+    if ((wall.to - wall.from).norm() <= 0.0) s.Fail("to", "the wall has no length");
+    if (s.Has("height")) RequirePositive(s, "height", wall.height);
+    w->walls.push_back(wall);
+  }
+  for (Reader& s : r.Children("rectangles")) {
+    Rect rect;
+    for (const char* key : {"origin", "u", "v"}) {
+      if (!s.Has(key)) s.Fail(key, "missing required key");
+    }
+    ReadVector(s, "origin", &rect.origin);
+    ReadVector(s, "u", &rect.u);
+    ReadVector(s, "v", &rect.v);
+    if (rect.u.norm() <= 0.0) s.Fail("u", "must not be zero");
+    if (rect.v.norm() <= 0.0) s.Fail("v", "must not be zero");
+    if (std::abs(rect.u.dot(rect.v)) > 1e-9 * rect.u.norm() * rect.v.norm()) {
+      s.Fail("v", "must be perpendicular to u");
+    }
+    w->rectangles.push_back(rect);
+  }
+  if (w->generators.empty() && w->walls.empty() && w->rectangles.empty()) {
+    r.Fail("generators", "the world is empty: give generators, walls or rectangles");
+  }
+}
+
+void ReadTrajectory(Reader r, TrajectoryOptions* t) {
+  if (r.Has("waypoints")) {
+    t->waypoints.clear();
+    for (Reader& p : r.Children("waypoints")) {
+      Eigen::Vector2d q;
+      p.ReadRequired("x", &q.x());
+      p.ReadRequired("y", &q.y());
+      t->waypoints.push_back(q);
+    }
+  }
+  r.Read("speed", &t->speed);
+  r.Read("turn_rate", &t->turn_rate);
+  std::string turn = t->turn == TurnMode::kSmooth ? "smooth" : "in_place";
+  r.Read("turn", &turn);
+  if (turn == "in_place") {
+    t->turn = TurnMode::kInPlace;
+  } else if (turn == "smooth") {
+    t->turn = TurnMode::kSmooth;
+  } else {
+    r.Fail("turn", "expected in_place or smooth");
+  }
+  r.Read("laps", &t->laps);
+  r.Read("closed", &t->closed);
+  r.Read("drive_back", &t->drive_back);
+  RequirePositive(r, "speed", t->speed);
+  RequirePositive(r, "turn_rate", t->turn_rate);
+  if (t->laps < 1) r.Fail("laps", "must be at least 1");
+  if (t->laps > 1 && !t->closed) r.Fail("laps", "more than one lap needs closed: true");
+  try {
+    Trajectory check(*t);
+  } catch (const std::invalid_argument& e) {
+    r.Fail("waypoints", e.what());
+  }
+}
+
+void ReadSensor(Reader r, SensorOptions* s) {
+  r.Read("width", &s->width);
+  r.Read("height", &s->height);
+  r.Read("hfov_deg", &s->hfov_deg);
+  r.Read("vfov_deg", &s->vfov_deg);
+  r.Read("max_range", &s->max_range);
+  r.Read("mount_height", &s->mount_height);
+  r.Read("noise_sigma", &s->noise_sigma);
+  r.Read("dropout", &s->dropout);
+  long long seed = static_cast<long long>(s->seed);
+  r.Read("seed", &seed);
+  if (seed < 0) r.Fail("seed", "must not be negative");
+  s->seed = static_cast<uint64_t>(seed);
+  if (s->width < 1 || s->width > 8192) r.Fail("width", "must be in 1..8192");
+  if (s->height < 1 || s->height > 8192) r.Fail("height", "must be in 1..8192");
+  if (!(s->hfov_deg > 0.0 && s->hfov_deg < 170.0)) r.Fail("hfov_deg", "must be in (0, 170)");
+  if (!(s->vfov_deg > 0.0 && s->vfov_deg < 170.0)) r.Fail("vfov_deg", "must be in (0, 170)");
+  RequirePositive(r, "max_range", s->max_range);
+  RequirePositive(r, "mount_height", s->mount_height);
+  RequireNonNegative(r, "noise_sigma", s->noise_sigma);
+  if (!(s->dropout >= 0.0 && s->dropout < 1.0)) r.Fail("dropout", "must be in [0, 1)");
+}
+
+}  // namespace
+
+ServiceOptions ReadServiceOptions(Reader reader) {
+  ServiceOptions o;
+  reader.Read("rate_hz", &o.sim.rate_hz);
+  RequirePositive(reader, "rate_hz", o.sim.rate_hz);
+  reader.Read("start_delay", &o.start_delay);
+  RequireNonNegative(reader, "start_delay", o.start_delay);
+  ReadWorld(reader.Child("world"), &o.sim.world);
+  ReadTrajectory(reader.Child("trajectory"), &o.sim.trajectory);
+  ReadSensor(reader.Child("sensor"), &o.sim.sensor);
+  reader.Finish();
+  return o;
+}
+
+ServiceOptions LoadServiceOptions(const std::string& file) {
+  if (file.empty()) return ReadServiceOptions(Reader::FromString("", "(defaults)", "sim"));
+  return ReadServiceOptions(Reader::Load(file, "sim"));
+}
+
+}  // namespace relplane::sim

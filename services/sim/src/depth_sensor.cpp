@@ -1,0 +1,48 @@
+#include "relplane/sim/depth_sensor.hpp"
+
+#include <cmath>
+#include <random>
+
+namespace relplane::sim {
+
+namespace {
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+}  // namespace
+
+DepthSensor::DepthSensor(const World& world, const SensorOptions& options)
+    : options_(options),
+      grid_(RayGrid::Pinhole(options.width, options.height, options.hfov_deg * kDegToRad,
+                             options.vfov_deg * kDegToRad)),
+      caster_(world) {}
+
+const std::vector<Hit>& DepthSensor::CastTrue(const geometry::Pose2& pose) {
+  caster_.Cast(Eigen::Vector3d(pose.x, pose.y, options_.mount_height), pose.yaw, grid_,
+               options_.max_range, &hits_);
+  return hits_;
+}
+
+Scan DepthSensor::Capture(const geometry::Pose2& pose, uint64_t frame) {
+  CastTrue(pose);
+  // One generator per frame, seeded from (seed, frame), so a frame does not depend on which
+  // frames were captured before it. The golden-ratio constant spreads neighbouring frames.
+  std::mt19937_64 rng(options_.seed ^ (0x9E3779B97F4A7C15ULL * (frame + 1)));
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+
+  Scan scan;
+  scan.points.reserve(hits_.size());
+  scan.rects.reserve(hits_.size());
+  for (size_t i = 0; i < hits_.size(); ++i) {
+    const Hit& hit = hits_[i];
+    if (hit.rect < 0) continue;
+    // Both draws happen for every hit, so the dropout rate does not change the noise pattern.
+    const double drop = uniform(rng);
+    const double range = hit.range + options_.noise_sigma * noise(rng);
+    if (drop < options_.dropout || range <= 0.0) continue;
+    scan.points.push_back((range * grid_.directions[i]).cast<float>());
+    scan.rects.push_back(hit.rect);
+  }
+  return scan;
+}
+
+}  // namespace relplane::sim
