@@ -38,6 +38,10 @@ TEST(ServiceCommandTest, ConfigUrlAndPerServiceFlags) {
   const ChildSpec sim = ServiceCommand("sim", "/b", "s", "u", "/r", options);
   EXPECT_EQ(sim.argv[sim.argv.size() - 2], "--rate");
   EXPECT_EQ(sim.argv.back(), "0");
+  const ChildSpec short_sim = ServiceCommand("sim", "/b", "s", "u", "/r", options, 12);
+  EXPECT_EQ(short_sim.argv[short_sim.argv.size() - 2], "--iterations");
+  EXPECT_EQ(short_sim.argv.back(), "12");
+  EXPECT_EQ(ServiceCommand("mapper", "/b", "s", "u", "/r", options, 12).argv.size(), 5u);
 }
 
 TEST(RecorderCommandTest, UsesTheLongUrlFlag) {

@@ -31,6 +31,7 @@ struct Flags {
   std::vector<std::string> sets;
   std::string lcm_url;
   std::string bin_dir;
+  long iterations = -1;
   bool check = false;
   bool allow_missing = false;
 };
@@ -233,6 +234,9 @@ int main(int argc, char** argv) {
                  "lists as key[N]); repeatable")
       ->take_all();
   app.add_option("--lcm-url", flags.lcm_url, "Bus URL (default: a udpm port unique to the run)");
+  app.add_option("--iterations", flags.iterations,
+                 "Stop the simulator after N iterations (passed to relplane-sim)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--check", flags.check, "Validate the scenario with every service, start nothing");
   app.add_flag("--allow-missing", flags.allow_missing,
                "Run without services that are not built yet (with a warning)");

@@ -17,13 +17,17 @@ std::string FormatNumber(double value) {
 
 ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
                          const std::string& scenario_file, const std::string& url,
-                         const std::string& run_dir, const LaunchOptions& options) {
+                         const std::string& run_dir, const LaunchOptions& options,
+                         long iterations) {
   ChildSpec spec;
   spec.name = name;
   spec.argv = {bin_dir + "/relplane-" + name, "--config", scenario_file, "--lcm-url", url};
   if (name == "logger") spec.argv.insert(spec.argv.end(), {"--out", run_dir});
   if (name == kSourceService && options.rate_hz >= 0.0) {
     spec.argv.insert(spec.argv.end(), {"--rate", FormatNumber(options.rate_hz)});
+  }
+  if (name == kSourceService && iterations >= 0) {
+    spec.argv.insert(spec.argv.end(), {"--iterations", std::to_string(iterations)});
   }
   return spec;
 }
