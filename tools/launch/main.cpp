@@ -196,8 +196,8 @@ int Launch(const Flags& flags) {
 
   std::vector<launch::ChildSpec> children;
   for (const std::string& service : launch::StartOrder(services)) {
-    children.push_back(
-        launch::ServiceCommand(service, bin_dir, scenario_file, url, run_dir, options));
+    children.push_back(launch::ServiceCommand(service, bin_dir, scenario_file, url, run_dir,
+                                              options, flags.iterations));
   }
   std::string listed;
   for (const std::string& service : services) listed += (listed.empty() ? "" : ", ") + service;
