@@ -57,7 +57,8 @@ int RunService(bus::Bus& bus, ServiceStats& stats, const std::function<bool()>& 
   int64_t next_status = MonotonicMicros() + 1000000;
   int result = 0;
   while (!StopRequested() && !(done && done())) {
-    if (bus.Handle(100) < 0) {
+    // A stop signal interrupts the wait (EINTR) and fails Handle: that is a stop, not an error.
+    if (bus.Handle(100) < 0 && !StopRequested()) {
       spdlog::error("the LCM bus failed; stopping");
       result = 1;
       break;
