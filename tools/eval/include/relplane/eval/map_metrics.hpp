@@ -1,0 +1,73 @@
+#pragma once
+// Map accuracy: the mapped walls (MAP) against the true walls (SIM_WORLD), both seen from above
+// as segments in the x-y plane.
+
+#include <cstdint>
+#include <vector>
+
+#include "relplane/common/geometry.hpp"
+#include "relplane/eval/options.hpp"
+#include "relplane/eval/trajectory_metrics.hpp"
+#include "relplane/eval/types.hpp"
+
+namespace relplane::eval {
+
+// A vertical plane seen from above: its line n . p + offset = 0 (unit n) and the extent of its
+// vertices along that line.
+struct WallLine {
+  int64_t id = 0;
+  geometry::Segment2 segment;
+  Eigen::Vector2d normal = Eigen::Vector2d::UnitX();
+  double offset = 0.0;
+};
+
+// Walls are the planes with |normal.z| < 0.1 (DESIGN: scenario conventions) whose vertices span
+// a segment. `without_extent` (optional) counts walls with fewer than two distinct vertices.
+std::vector<WallLine> WallsOf(const std::vector<PlaneRecord>& planes,
+                              int64_t* without_extent = nullptr);
+
+// The matching of one true wall.
+struct WallMatch {
+  int64_t true_id = 0;
+  double length_m = 0.0;
+  bool expected = false;              // seen from the truth trajectory, or matched
+  std::vector<int64_t> mapped_ids;    // every mapped plane matched to it, best first
+  double normal_error_deg = kNaN;     // of the best match
+  double offset_error_m = kNaN;       // best match's midpoint to the true line
+  double endpoint_error_m[2] = {kNaN, kNaN};  // true ends to the mapped ends, in wall order
+  double overlap_m = kNaN;
+};
+
+struct ErrorSummary {
+  double mean = kNaN;
+  double max = kNaN;
+};
+
+struct MapMetrics {
+  bool has_truth = false;            // a SIM_WORLD was received
+  int64_t true_walls = 0;            // long enough to count (VisibilityOptions)
+  int64_t expected_walls = 0;
+  int64_t mapped_planes = 0;
+  int64_t mapped_walls = 0;
+  int64_t mapped_without_extent = 0;
+  int64_t walls_mapped = 0;          // true walls with at least one match
+  int64_t duplicates = 0;            // extra matches beyond the first, summed over true walls
+  int64_t spurious = 0;              // mapped walls matching no true wall
+  int64_t missed = 0;                // expected true walls without a match
+  ErrorSummary normal_error_deg;
+  ErrorSummary offset_error_m;
+  ErrorSummary endpoint_error_m;
+  std::vector<WallMatch> walls;
+  std::vector<int64_t> spurious_ids;
+};
+
+// `truth` is the true trajectory, for deciding which walls were in view.
+MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
+                             const std::vector<PoseSample>& truth, const EvalOptions& options);
+
+// Whether a point of `wall` was within range and field of view of some pose, with no other wall
+// of `walls` crossing the line of sight.
+bool WallSeenFrom(const WallLine& wall, const std::vector<WallLine>& walls,
+                  const std::vector<PoseSample>& poses, const VisibilityOptions& options);
+
+}  // namespace relplane::eval

@@ -1,0 +1,94 @@
+#include <algorithm>
+#include <cmath>
+
+#include "relplane/eval/svg.hpp"
+#include "svg_util.hpp"
+
+namespace relplane::eval {
+namespace {
+
+constexpr double kLeft = 70.0;
+constexpr double kRight = 20.0;
+constexpr double kTop = 40.0;
+constexpr double kBottom = 50.0;
+constexpr double kPlotHeight = 300.0;
+
+struct Axes {
+  double t0 = 0.0, t1 = 1.0, e1 = 1.0, width = 800.0;
+  double X(double t) const { return kLeft + (t - t0) / (t1 - t0) * width; }
+  double Y(double e) const { return kTop + kPlotHeight - e / e1 * kPlotHeight; }
+};
+
+std::string Series(const std::vector<ErrorSample>& errors, const Axes& axes, bool aligned,
+                   const char* style) {
+  std::string points;
+  double last_x = -1e9;
+  for (const ErrorSample& e : errors) {
+    const double x = axes.X(e.t_s);
+    // At most about two points per pixel column keep large runs small.
+    if (x - last_x < 0.5) continue;
+    points += svg::Format("%.1f,%.1f ", x, axes.Y(aligned ? e.aligned_m : e.position_m));
+    last_x = x;
+  }
+  if (points.empty()) return "";
+  return "<polyline fill=\"none\" " + std::string(style) + " points=\"" + points + "\"/>\n";
+}
+
+}  // namespace
+
+std::string RenderErrorSvg(const TrajectoryMetrics& trajectory, double width_px) {
+  const std::vector<ErrorSample>& errors = trajectory.errors;
+  const double width = std::max(width_px, 400.0);
+  Axes axes;
+  axes.width = width - kLeft - kRight;
+  double e_max = 0.0;
+  if (!errors.empty()) {
+    axes.t0 = errors.front().t_s;
+    axes.t1 = std::max(errors.back().t_s, axes.t0 + 1e-3);
+    for (const ErrorSample& e : errors) e_max = std::max({e_max, e.position_m, e.aligned_m});
+  }
+  const double e_step = NiceStep(std::max(e_max, 0.01), 5.0);
+  axes.e1 = std::max(e_step, std::ceil(e_max / e_step) * e_step);
+  const double t_step = NiceStep(axes.t1 - axes.t0, 8.0);
+
+  const double height = kTop + kPlotHeight + kBottom;
+  std::string out = svg::Header(width, height);
+  out += svg::Text(kLeft, 24, "Position error against truth (x-y), matched by seq", "start",
+                   "font-size=\"15\" font-weight=\"bold\"");
+  for (double e = 0.0; e <= axes.e1 + 1e-9; e += e_step) {
+    out += svg::Line(kLeft, axes.Y(e), kLeft + axes.width, axes.Y(e),
+                     "stroke=\"#eeeeee\" stroke-width=\"1\"");
+    out += svg::Text(kLeft - 6, axes.Y(e) + 4, svg::Format("%g", e), "end");
+  }
+  for (double t = std::ceil(axes.t0 / t_step) * t_step; t <= axes.t1 + 1e-9; t += t_step) {
+    out += svg::Line(axes.X(t), kTop + kPlotHeight, axes.X(t), kTop + kPlotHeight + 5,
+                     "stroke=\"black\" stroke-width=\"1\"");
+    out += svg::Text(axes.X(t), kTop + kPlotHeight + 18, svg::Format("%g", t), "middle");
+  }
+  out += svg::Line(kLeft, kTop, kLeft, kTop + kPlotHeight, "stroke=\"black\" stroke-width=\"1\"");
+  out += svg::Line(kLeft, kTop + kPlotHeight, kLeft + axes.width, kTop + kPlotHeight,
+                   "stroke=\"black\" stroke-width=\"1\"");
+  out += svg::Text(kLeft + 0.5 * axes.width, height - 10, "time (s)", "middle");
+  out += svg::Format(
+      "<text x=\"18\" y=\"%.1f\" text-anchor=\"middle\" transform=\"rotate(-90 18 %.1f)\">"
+      "position error (m)</text>\n",
+      kTop + 0.5 * kPlotHeight, kTop + 0.5 * kPlotHeight);
+
+  if (errors.empty()) {
+    out += svg::Text(kLeft + 0.5 * axes.width, kTop + 0.5 * kPlotHeight,
+                     "no pose matched to truth yet", "middle", "fill=\"#888888\"");
+  }
+  out += Series(errors, axes, false, "stroke=\"#d62828\" stroke-width=\"1.5\"");
+  out += Series(errors, axes, true, "stroke=\"#1f5fbf\" stroke-width=\"1.2\" stroke-dasharray=\"5 3\"");
+
+  const double lx = kLeft + axes.width - 260;
+  out += svg::Line(lx, kTop + 14, lx + 26, kTop + 14, "stroke=\"#d62828\" stroke-width=\"1.5\"");
+  out += svg::Text(lx + 32, kTop + 18, "no alignment (first pose anchors)");
+  out += svg::Line(lx, kTop + 34, lx + 26, kTop + 34,
+                   "stroke=\"#1f5fbf\" stroke-width=\"1.2\" stroke-dasharray=\"5 3\"");
+  out += svg::Text(lx + 32, kTop + 38, "after SE(2) alignment");
+  out += "</svg>\n";
+  return out;
+}
+
+}  // namespace relplane::eval

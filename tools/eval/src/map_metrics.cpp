@@ -1,0 +1,235 @@
+#include "relplane/eval/map_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace relplane::eval {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / M_PI;
+constexpr double kWallNormalZMax = 0.1;
+
+// Interval of `s` along the unit direction `dir` (from the origin).
+std::pair<double, double> Extent(const geometry::Segment2& s, const Eigen::Vector2d& dir) {
+  const double ta = dir.dot(s.a);
+  const double tb = dir.dot(s.b);
+  return {std::min(ta, tb), std::max(ta, tb)};
+}
+
+struct Candidate {
+  bool ok = false;
+  double angle_deg = 0.0;
+  double offset_m = 0.0;
+  double overlap_m = 0.0;
+};
+
+Candidate Compare(const WallLine& truth, const WallLine& mapped, const MatchOptions& options) {
+  Candidate c;
+  const double cosine = std::min(1.0, std::abs(truth.normal.dot(mapped.normal)));
+  c.angle_deg = std::acos(cosine) * kRadToDeg;
+  c.offset_m = std::abs(truth.normal.dot(mapped.segment.Midpoint()) + truth.offset);
+  const Eigen::Vector2d dir(-truth.normal.y(), truth.normal.x());
+  const auto [t0, t1] = Extent(truth.segment, dir);
+  const auto [m0, m1] = Extent(mapped.segment, dir);
+  c.overlap_m = std::min(t1, m1) - std::max(t0, m0);
+  // A short mapped piece (a wall seen end-on) needs only half its length inside the true wall.
+  const double needed = std::min(options.overlap_min_m, 0.5 * (m1 - m0));
+  c.ok = c.angle_deg < options.angle_max_deg && c.offset_m < options.offset_max_m &&
+         c.overlap_m >= needed && c.overlap_m > 0.0;
+  return c;
+}
+
+// Segment ends ordered along `dir`.
+std::pair<Eigen::Vector2d, Eigen::Vector2d> OrderedEnds(const geometry::Segment2& s,
+                                                        const Eigen::Vector2d& dir) {
+  if (dir.dot(s.a) <= dir.dot(s.b)) return {s.a, s.b};
+  return {s.b, s.a};
+}
+
+// True when segments p->q and a->b cross strictly inside p->q.
+bool Blocks(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const geometry::Segment2& wall) {
+  const Eigen::Vector2d r = q - p;
+  const Eigen::Vector2d s = wall.b - wall.a;
+  const double denom = r.x() * s.y() - r.y() * s.x();
+  if (std::abs(denom) < 1e-12) return false;
+  const Eigen::Vector2d w = wall.a - p;
+  const double u = (w.x() * s.y() - w.y() * s.x()) / denom;  // along the line of sight
+  const double v = (w.x() * r.y() - w.y() * r.x()) / denom;  // along the wall
+  return u > 1e-6 && u < 1.0 - 1e-6 && v >= 0.0 && v <= 1.0;
+}
+
+void Summarise(const std::vector<double>& values, ErrorSummary* out) {
+  if (values.empty()) return;
+  double sum = 0.0;
+  out->max = 0.0;
+  for (const double v : values) {
+    sum += v;
+    out->max = std::max(out->max, v);
+  }
+  out->mean = sum / static_cast<double>(values.size());
+}
+
+// Truth poses thinned to those that moved or turned noticeably: visibility is tested per pose.
+std::vector<PoseSample> Thinned(const std::vector<PoseSample>& poses) {
+  std::vector<PoseSample> kept;
+  for (const PoseSample& p : poses) {
+    if (!kept.empty()) {
+      const PoseSample& last = kept.back();
+      const double moved = (p.position.head<2>() - last.position.head<2>()).norm();
+      const double turned = std::abs(
+          geometry::WrapAngle(geometry::YawOf(p.orientation) - geometry::YawOf(last.orientation)));
+      if (moved < 0.1 && turned < 5.0 * M_PI / 180.0) continue;
+    }
+    kept.push_back(p);
+  }
+  return kept;
+}
+
+}  // namespace
+
+std::vector<WallLine> WallsOf(const std::vector<PlaneRecord>& planes, int64_t* without_extent) {
+  std::vector<WallLine> walls;
+  for (const PlaneRecord& plane : planes) {
+    const Eigen::Vector2d n2 = plane.normal.head<2>();
+    if (std::abs(plane.normal.z()) >= kWallNormalZMax || n2.norm() < 1e-9) continue;
+    WallLine wall;
+    wall.id = plane.id;
+    wall.normal = n2.normalized();
+    const Eigen::Vector2d dir(-wall.normal.y(), wall.normal.x());
+    double t_min = 0.0;
+    double t_max = 0.0;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (size_t i = 0; i < plane.vertices.size(); ++i) {
+      const double t = dir.dot(plane.vertices[i].head<2>());
+      t_min = i == 0 ? t : std::min(t_min, t);
+      t_max = i == 0 ? t : std::max(t_max, t);
+      mean += plane.vertices[i].head<2>();
+    }
+    if (plane.vertices.size() < 2 || t_max - t_min < 1e-6) {
+      if (without_extent != nullptr) ++*without_extent;
+      continue;
+    }
+    mean /= static_cast<double>(plane.vertices.size());
+    wall.offset = -wall.normal.dot(mean);
+    const Eigen::Vector2d foot = -wall.offset * wall.normal;  // the line's point nearest 0
+    wall.segment.a = foot + t_min * dir;
+    wall.segment.b = foot + t_max * dir;
+    walls.push_back(wall);
+  }
+  return walls;
+}
+
+bool WallSeenFrom(const WallLine& wall, const std::vector<WallLine>& walls,
+                  const std::vector<PoseSample>& poses, const VisibilityOptions& options) {
+  const double length = wall.segment.Length();
+  // Stay a little inside the ends so a wall meeting this one at a corner does not hide it.
+  const double inset = std::min(0.05, 0.25 * length);
+  const int samples = std::max(1, static_cast<int>(std::ceil((length - 2 * inset) /
+                                                             std::max(options.sample_step_m, 0.01))));
+  const Eigen::Vector2d dir = wall.segment.Direction();
+  const double half_fov = 0.5 * options.hfov_deg * M_PI / 180.0;
+  for (const PoseSample& pose : poses) {
+    const Eigen::Vector2d p = pose.position.head<2>();
+    const double yaw = geometry::YawOf(pose.orientation);
+    if (wall.segment.DistanceTo(p) > options.range_m) continue;
+    for (int k = 0; k <= samples; ++k) {
+      const Eigen::Vector2d q =
+          wall.segment.a + dir * (inset + (length - 2 * inset) * k / samples);
+      const Eigen::Vector2d ray = q - p;
+      if (ray.norm() > options.range_m) continue;
+      if (std::abs(geometry::WrapAngle(std::atan2(ray.y(), ray.x()) - yaw)) > half_fov) continue;
+      bool blocked = false;
+      for (const WallLine& other : walls) {
+        if (other.id != wall.id && Blocks(p, q, other.segment)) {
+          blocked = true;
+          break;
+        }
+      }
+      if (!blocked) return true;
+    }
+  }
+  return false;
+}
+
+MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
+                             const std::vector<PoseSample>& truth, const EvalOptions& options) {
+  MapMetrics m;
+  m.has_truth = !world.planes.empty();
+  m.mapped_planes = static_cast<int64_t>(map.planes.size());
+  std::vector<WallLine> true_walls = WallsOf(world.planes);
+  const std::vector<WallLine> all_true_walls = true_walls;  // every wall occludes
+  true_walls.erase(std::remove_if(true_walls.begin(), true_walls.end(),
+                                  [&](const WallLine& w) {
+                                    return w.segment.Length() <
+                                           options.visibility.min_wall_length_m;
+                                  }),
+                   true_walls.end());
+  const std::vector<WallLine> mapped = WallsOf(map.planes, &m.mapped_without_extent);
+  m.true_walls = static_cast<int64_t>(true_walls.size());
+  m.mapped_walls = static_cast<int64_t>(mapped.size());
+
+  // Each mapped wall goes to the true wall it overlaps most (ties: the nearer line).
+  std::vector<std::vector<std::pair<Candidate, int64_t>>> matches(true_walls.size());
+  for (const WallLine& w : mapped) {
+    int best = -1;
+    Candidate best_c;
+    for (size_t t = 0; t < true_walls.size(); ++t) {
+      const Candidate c = Compare(true_walls[t], w, options.match);
+      if (!c.ok) continue;
+      if (best < 0 || c.overlap_m > best_c.overlap_m ||
+          (c.overlap_m == best_c.overlap_m && c.offset_m < best_c.offset_m)) {
+        best = static_cast<int>(t);
+        best_c = c;
+      }
+    }
+    if (best < 0) {
+      if (m.has_truth) m.spurious_ids.push_back(w.id);
+    } else {
+      matches[best].push_back({best_c, w.id});
+    }
+  }
+  m.spurious = static_cast<int64_t>(m.spurious_ids.size());
+  const std::vector<PoseSample> viewpoints = Thinned(truth);
+
+  std::vector<double> normal_errors, offset_errors, endpoint_errors;
+  for (size_t t = 0; t < true_walls.size(); ++t) {
+    const WallLine& tw = true_walls[t];
+    WallMatch wm;
+    wm.true_id = tw.id;
+    wm.length_m = tw.segment.Length();
+    auto& list = matches[t];
+    std::stable_sort(list.begin(), list.end(), [](const auto& x, const auto& y) {
+      return x.first.overlap_m > y.first.overlap_m;
+    });
+    for (const auto& [c, id] : list) wm.mapped_ids.push_back(id);
+    if (!list.empty()) {
+      const Candidate& c = list.front().first;
+      wm.normal_error_deg = c.angle_deg;
+      wm.offset_error_m = c.offset_m;
+      wm.overlap_m = c.overlap_m;
+      const auto it = std::find_if(mapped.begin(), mapped.end(),
+                                   [&](const WallLine& w) { return w.id == list.front().second; });
+      const Eigen::Vector2d dir = tw.segment.Direction();
+      const auto [t_lo, t_hi] = OrderedEnds(tw.segment, dir);
+      const auto [m_lo, m_hi] = OrderedEnds(it->segment, dir);
+      wm.endpoint_error_m[0] = (t_lo - m_lo).norm();
+      wm.endpoint_error_m[1] = (t_hi - m_hi).norm();
+      normal_errors.push_back(wm.normal_error_deg);
+      offset_errors.push_back(wm.offset_error_m);
+      endpoint_errors.push_back(wm.endpoint_error_m[0]);
+      endpoint_errors.push_back(wm.endpoint_error_m[1]);
+      ++m.walls_mapped;
+      m.duplicates += static_cast<int64_t>(list.size()) - 1;
+    }
+    wm.expected = !list.empty() || WallSeenFrom(tw, all_true_walls, viewpoints, options.visibility);
+    if (wm.expected) ++m.expected_walls;
+    if (wm.expected && list.empty()) ++m.missed;
+    m.walls.push_back(wm);
+  }
+  Summarise(normal_errors, &m.normal_error_deg);
+  Summarise(offset_errors, &m.offset_error_m);
+  Summarise(endpoint_errors, &m.endpoint_error_m);
+  return m;
+}
+
+}  // namespace relplane::eval
