@@ -34,7 +34,7 @@ TEST(RayGrid, PinholeRaysSpanTheFieldOfView) {
   // Every ray of a column shares its horizontal direction.
   for (int row = 0; row < 2; ++row) {
     for (int col = 0; col < 4; ++col) {
-      const Eigen::Vector3d& d = g.directions[row * 4 + col];
+      const Eigen::Vector3d& d = g.directions[col * 2 + row];
       EXPECT_NEAR(d.head<2>().normalized().dot(g.column_directions[col]), 1.0, 1e-12);
     }
   }

@@ -42,11 +42,11 @@ RayGrid RayGrid::Pinhole(int width, int height, double hfov, double vfov) {
     grid.column_directions[col] = Eigen::Vector2d(1.0, y).normalized();
   }
   grid.directions.resize(static_cast<size_t>(width) * height);
-  for (int row = 0; row < height; ++row) {
-    const double z = tan_v * (1.0 - (2.0 * row + 1.0) / height);  // top row looks up
-    for (int col = 0; col < width; ++col) {
-      const double y = tan_h * (1.0 - (2.0 * col + 1.0) / width);
-      grid.directions[static_cast<size_t>(row) * width + col] =
+  for (int col = 0; col < width; ++col) {
+    const double y = tan_h * (1.0 - (2.0 * col + 1.0) / width);
+    for (int row = 0; row < height; ++row) {
+      const double z = tan_v * (1.0 - (2.0 * row + 1.0) / height);  // top row looks up
+      grid.directions[static_cast<size_t>(col) * height + row] =
           Eigen::Vector3d(1.0, y, z).normalized();
     }
   }
@@ -93,6 +93,12 @@ RayCaster::RayCaster(const World& world) {
     }
     // The edge slack lets a hit lie up to kEdgeSlack * |u| (or |v|) past the edges.
     f.margin = kCullSlack + thickness + kEdgeSlack * (r.u.norm() + r.v.norm());
+    f.z_min = std::numeric_limits<double>::infinity();
+    f.z_max = -f.z_min;
+    for (const Eigen::Vector3d& c : corners) {
+      f.z_min = std::min(f.z_min, c.z() - f.margin);
+      f.z_max = std::max(f.z_max, c.z() + f.margin);
+    }
     walls_.push_back(f);
   }
 }
@@ -101,7 +107,14 @@ bool RayCaster::Intersect(const Prepared& r, const Eigen::Vector3d& o, const Eig
                           double max_range, double* t) {
   const double denom = r.normal.dot(dir);
   if (std::abs(denom) < 1e-12) return false;
-  const double tt = -(r.normal.dot(o) + r.d) / denom;
+  // Range checks before the division, which is the test's most expensive step:
+  // 0 < num / denom <= max_range.
+  const double num = -(r.normal.dot(o) + r.d);
+  if (denom > 0.0 ? (num <= 0.0 || num > max_range * denom)
+                  : (num >= 0.0 || num < max_range * denom)) {
+    return false;
+  }
+  const double tt = num / denom;
   if (!(tt > 0.0 && tt <= max_range)) return false;
   const Eigen::Vector3d q = o + tt * dir - r.origin;
   const double a = q.dot(r.u_scaled);
@@ -184,7 +197,8 @@ void RayCaster::ColumnCandidates(const Eigen::Vector2d& o2, const Eigen::Vector2
     const double den = Cross(c, e);
     if (std::abs(den) < kMinSin * length) {
       // Nearly parallel: fall back on the distance to the footprint as the lower bound.
-      column_.push_back({std::max(0.0, DistanceToSegment(o2, f->a, f->b) - f->margin), f->rect});
+      column_.push_back({std::max(0.0, DistanceToSegment(o2, f->a, f->b) - f->margin),
+                         std::numeric_limits<double>::infinity(), f->z_min, f->z_max, f->rect});
       continue;
     }
     const Eigen::Vector2d w = f->a - o2;
@@ -194,7 +208,7 @@ void RayCaster::ColumnCandidates(const Eigen::Vector2d& o2, const Eigen::Vector2
     // Sliding the crossing by `margin` along the wall moves it by margin / sin along the ray.
     const double slack = f->margin / sin_angle;
     if (along < -f->margin || along > length + f->margin || s < -slack) continue;
-    column_.push_back({std::max(0.0, s - slack), f->rect});
+    column_.push_back({std::max(0.0, s - slack), s + slack, f->z_min, f->z_max, f->rect});
   }
   std::sort(column_.begin(), column_.end());
 }
@@ -203,22 +217,30 @@ void RayCaster::Cast(const Eigen::Vector3d& origin, double yaw, const RayGrid& g
                      double max_range, std::vector<Hit>* hits) {
   const double cy = std::cos(yaw);
   const double sy = std::sin(yaw);
-  hits->assign(grid.directions.size(), Hit{});
+  hits->resize(grid.directions.size());
   CullForFrame(origin, yaw, grid, max_range);
   const Eigen::Vector2d o2 = origin.head<2>();
   for (int col = 0; col < grid.width; ++col) {
     const Eigen::Vector2d& cs = grid.column_directions[col];
     ColumnCandidates(o2, Eigen::Vector2d(cy * cs.x() - sy * cs.y(), sy * cs.x() + cy * cs.y()));
     for (int row = 0; row < grid.height; ++row) {
-      const size_t index = static_cast<size_t>(row) * grid.width + col;
+      const size_t index = static_cast<size_t>(col) * grid.height + row;
       const Eigen::Vector3d dir = RotateYaw(cy, sy, grid.directions[index]);
       Hit best;
       for (int i : frame_others_) Consider(rects_[i], i, origin, dir, max_range, &best);
-      // A candidate whose nearest possible hit is beyond the best so far cannot win, nor can
-      // any after it: they are sorted by that bound.
-      const double horizontal = std::hypot(dir.x(), dir.y());
+      const double horizontal = std::sqrt(dir.x() * dir.x() + dir.y() * dir.y());
+      const double slope = dir.z() / horizontal;  // height gained per metre of floor plan
       for (const Candidate& c : column_) {
+        // A candidate whose nearest possible hit is beyond the best so far cannot win, nor can
+        // any after it: they are sorted by that bound.
         if (best.rect >= 0 && c.s_low > best.range * horizontal) break;
+        // The ray passes the wall's footprint between s_low and s_high, at heights between
+        // these two: if they miss the wall's height extent, so does the exact test.
+        if (c.s_high < std::numeric_limits<double>::infinity()) {
+          const double z_a = origin.z() + c.s_low * slope;
+          const double z_b = origin.z() + c.s_high * slope;
+          if (std::max(z_a, z_b) < c.z_min || std::min(z_a, z_b) > c.z_max) continue;
+        }
         Consider(rects_[c.rect], c.rect, origin, dir, max_range, &best);
       }
       (*hits)[index] = best;

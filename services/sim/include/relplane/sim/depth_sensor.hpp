@@ -24,8 +24,9 @@ struct SensorOptions {
   uint64_t seed = 1;          // noise and dropout are a function of (seed, frame)
 };
 
-// One frame: points in the sensor frame (x forward, y left, z up), only hits, and for each
-// point the index of the rectangle it came from.
+// One frame: points in the sensor frame (x forward, y left, z up), only hits, in the grid's
+// order (column by column, left to right), and for each point the index of the rectangle it
+// came from.
 struct Scan {
   std::vector<Eigen::Vector3f> points;
   std::vector<int> rects;
@@ -35,8 +36,8 @@ class DepthSensor {
  public:
   DepthSensor(const World& world, const SensorOptions& options);
 
-  // The noise-free nearest hit of every ray from `pose` (the sensor at mount height), in image
-  // order.
+  // The noise-free nearest hit of every ray from `pose` (the sensor at mount height), in the
+  // grid's order (column by column).
   const std::vector<Hit>& CastTrue(const geometry::Pose2& pose);
   // A frame as the sensor reports it: hits with range noise, minus dropouts. The same
   // (pose, frame) always gives the same scan.

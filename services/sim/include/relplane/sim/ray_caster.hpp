@@ -21,12 +21,14 @@ struct Hit {
   int rect = -1;
 };
 
-// The rays of a sensor, in its frame (x forward, y left, z up), image order (row-major, top
-// row first, leftmost column first). All rays of one column share one horizontal direction.
+// The rays of a sensor, in its frame (x forward, y left, z up), column by column (leftmost
+// column first, top row first within a column): the caster walks a column at a time, so this
+// order keeps its memory access sequential. All rays of one column share one horizontal
+// direction.
 struct RayGrid {
   int width = 0;
   int height = 0;
-  std::vector<Eigen::Vector3d> directions;         // unit, index row * width + col
+  std::vector<Eigen::Vector3d> directions;         // unit, index col * height + row
   std::vector<Eigen::Vector2d> column_directions;  // unit horizontal direction per column
 
   // A pinhole (depth camera) grid: pixel centres of a width x height image spanning the
@@ -39,7 +41,7 @@ class RayCaster {
   explicit RayCaster(const World& world);
 
   // Casts every ray of `grid` from a level sensor at `origin` (world frame) turned by `yaw`
-  // about z. `hits` gets one entry per ray in image order.
+  // about z. `hits` gets one entry per ray, in the grid's order.
   void Cast(const Eigen::Vector3d& origin, double yaw, const RayGrid& grid, double max_range,
             std::vector<Hit>* hits);
 
@@ -66,9 +68,14 @@ class RayCaster {
     Eigen::Vector2d a;
     Eigen::Vector2d b;
     double margin = 0.0;  // tolerance covering the test's edge slack and non-verticality
+    double z_min = 0.0;   // height extent of the rectangle, widened by that tolerance
+    double z_max = 0.0;
   };
   struct Candidate {
-    double s_low;  // lower bound of the horizontal distance at which the ray can hit it
+    double s_low;   // lower bound of the horizontal distance at which the ray can hit it
+    double s_high;  // upper bound (infinity when unknown)
+    double z_min;
+    double z_max;
     int rect;
     bool operator<(const Candidate& o) const {
       return s_low < o.s_low || (s_low == o.s_low && rect < o.rect);
