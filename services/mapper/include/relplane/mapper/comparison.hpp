@@ -1,0 +1,103 @@
+#pragma once
+// §II.C Plane relative comparisons: two rltplanes seen in the same interval are rotated into the
+// first plane's basis each iteration, so their relative location and orientation are rotation-
+// and translation-invariant, and averaged over the common interval. Static edges are found by
+// the four pairings of the two planes' edges with the lowest standard deviation; the interval is
+// split where either plane turns from growing to shrinking.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "relplane/mapper/options.hpp"
+#include "relplane/mapper/rltplane.hpp"
+
+namespace relplane::mapper {
+
+// What one plane (B) looks like from another (A), averaged: in A's frame with its origin at one
+// of A's edges (x along A's wall, y along A's normal).
+struct DirectedStats {
+  // Static pairings: B's edge j relative to A's edge i, summed over the sub-intervals where
+  // the pairing was static (§II.C, Fig. 4).
+  Eigen::Vector2d pair_sum[2][2];
+  double pair_sq[2][2];  // sum of squared norms, for the spread over the whole interval
+  double pair_count[2][2];
+  // B's line offset from A's edge i (n_B . (p - e_Ai) for p on B), over sub-intervals where
+  // it was steady: pins B's line even when none of B's edges is static.
+  double line_sum[2];
+  double line_count[2];
+
+  DirectedStats();
+  void Add(const DirectedStats& other);
+  bool Pair(int i, int j, Eigen::Vector2d* mean) const;
+  // Standard deviation of a static pairing over all its sub-intervals together: an edge that
+  // drifts slowly (occlusion) passes in each sub-interval but not over the whole interval.
+  double PairStd(int i, int j) const;
+  bool Line(int i, double* mean) const;
+  double PairCount(int i) const { return pair_count[i][0] + pair_count[i][1]; }
+};
+
+// Running sums of one sub-interval (constant growth phase of both planes, no gap).
+struct SubInterval {
+  int64_t first = 0;
+  int64_t last = 0;
+  int64_t phase_a = 0;
+  int64_t phase_b = 0;
+  double n = 0.0;
+  double sin_sum = 0.0;
+  double cos_sum = 0.0;
+  // [0]: B seen from A, [1]: A seen from B. Per pairing: x, y, x^2, y^2 sums.
+  double pair[2][2][2][4] = {};
+  double line[2][2][2] = {};  // [dir][edge][sum, sum^2]
+  // Sensor-frame positions of A's and B's edges (x, y, x^2, y^2): did the sensor move at all?
+  double edges[4][4] = {};
+};
+
+class Comparison {
+ public:
+  Comparison(int64_t a, int64_t b) : a_(a), b_(b) {}
+
+  // Brings the comparison up to iteration `now` from the planes' stored observations (§II.C).
+  // Marks the edges found static in the interval that includes `now` on the planes, and marks a
+  // plane seen whole where both its edges were static.
+  void Update(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options,
+              int max_gap);
+
+  int64_t A() const { return a_; }
+  int64_t B() const { return b_; }
+  int64_t Other(int64_t id) const { return id == a_ ? b_ : a_; }
+  // The other plane as seen from plane `from` (which must be A() or B()).
+  const DirectedStats& From(int64_t from) const { return from == a_ ? total_[0] : total_[1]; }
+  // Frame angle of the other plane minus that of `from`: the averaged orientation difference.
+  double DeltaAlpha(int64_t from) const;
+  // Iterations in the common interval so far.
+  double Common() const { return common_; }
+  // Sub-intervals dropped as ambiguous (§II.C parallel planes) so far.
+  int Ambiguous() const { return ambiguous_; }
+
+ private:
+  void Rebuild(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options,
+               int max_gap);
+  void Summarise(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options);
+
+  int64_t a_;
+  int64_t b_;
+  // Frozen sub-intervals are folded into these sums and never recomputed (bounded cost).
+  DirectedStats frozen_[2];
+  double frozen_sin_ = 0.0;
+  double frozen_cos_ = 0.0;
+  double frozen_n_ = 0.0;
+  int frozen_ambiguous_ = 0;
+  int64_t frozen_until_ = INT64_MIN;
+  std::vector<SubInterval> open_;
+  int64_t processed_until_ = INT64_MIN;
+  int64_t phase_seen_a_ = INT64_MIN;  // latest phase start of each plane at the last update
+  int64_t phase_seen_b_ = INT64_MIN;
+  DirectedStats total_[2];
+  double sin_sum_ = 0.0;
+  double cos_sum_ = 0.0;
+  double common_ = 0.0;
+  int ambiguous_ = 0;
+};
+
+}  // namespace relplane::mapper

@@ -1,0 +1,21 @@
+#pragma once
+// §II.D Global map: the first group is anchored at the start pose by comparing its relative map
+// to its rltplanes' first observations; every later group is placed through the rltplanes it
+// shares with groups already placed (the link planes), and places its other members.
+
+#include <cstddef>
+
+#include "relplane/mapper/options.hpp"
+#include "relplane/mapper/state.hpp"
+
+namespace relplane::mapper {
+
+// The placement of a wall observed as `obs` from sensor pose `pose`, with its point at edge
+// `ref` (or at the foot of the perpendicular from the sensor when ref < 0).
+Placement PlacementOf(const Observation& obs, const geometry::Pose2& pose, int ref);
+
+// Re-places groups `from`, `from + 1`, ... (hard chaining: a change in one group moves every
+// later one). Placements made by those groups are recomputed.
+void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options);
+
+}  // namespace relplane::mapper

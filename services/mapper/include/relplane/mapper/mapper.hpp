@@ -1,0 +1,64 @@
+#pragma once
+// The Relative Plane mapper (the paper, §II): one call per iteration with the untransformed
+// planes of that iteration; reads as register -> group -> compare -> build maps -> localise.
+
+#include <cstdint>
+#include <vector>
+
+#include "relplane/mapper/localisation.hpp"
+#include "relplane/mapper/observation.hpp"
+#include "relplane/mapper/options.hpp"
+#include "relplane/mapper/state.hpp"
+
+namespace relplane::mapper {
+
+// A mapped wall in the world frame (what MAP carries).
+struct MappedPlane {
+  int64_t id = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  double d = 0.0;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> vertices;  // the wall's rectangle, ends at its edges
+  int64_t observations = 0;
+  bool both_ends_known = false;
+};
+
+struct MappedGroup {
+  int64_t id = 0;
+  int64_t basis = 0;
+  std::vector<int64_t> members;
+};
+
+struct MapSnapshot {
+  std::vector<MappedPlane> planes;
+  std::vector<MappedGroup> groups;
+};
+
+class Mapper {
+ public:
+  explicit Mapper(MapperOptions options = {});
+
+  // Processes one plane set; `iteration` must increase (gaps are fine). Returns the pose.
+  PoseEstimate Process(int64_t iteration, const std::vector<PlaneInput>& planes);
+
+  // True when the map changed since the last call to TakeMapChanged().
+  bool TakeMapChanged();
+  MapSnapshot Map() const;
+  const MapperState& State() const { return state_; }
+  const MapperOptions& Options() const { return options_; }
+  // Sensor height added to planes' z (the start pose's z).
+  double Height() const { return options_.start_pose.z; }
+
+ private:
+  std::vector<int64_t> Register(int64_t iteration, std::vector<Observation>& observations);
+  void Compare(int64_t iteration, const std::vector<int64_t>& visible);
+  void BuildMaps();
+  PoseEstimate Localise(int64_t iteration, const std::vector<int64_t>& visible);
+
+  MapperOptions options_;
+  MapperState state_;
+  geometry::Pose2 pose_;
+  int64_t last_iteration_ = -1;
+};
+
+}  // namespace relplane::mapper

@@ -1,0 +1,61 @@
+#pragma once
+// One untransformed plane as the segmenter reports it, and its 2½D reduction (Fig. 1 row).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace relplane::mapper {
+
+// A plane in the sensor frame (x forward, y left, z up), as PLANES carries it.
+struct PlaneInput {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  // unit, towards the sensor
+  double d = 0.0;                                      // normal . p + d = 0
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> vertices;  // visible extent (4 corners of a wall's rectangle)
+  int support = 0;
+  double rms = 0.0;
+};
+
+// The two ends of a wall along its direction t (see Observation).
+enum class Edge : int { kLo = 0, kHi = 1 };
+inline Edge Other(Edge e) { return e == Edge::kLo ? Edge::kHi : Edge::kLo; }
+inline int Index(Edge e) { return static_cast<int>(e); }
+
+// A wall observation reduced to 2½D. Frame of a wall: x along t = (-n_y, n_x), y along the normal
+// n (towards the sensor). Its frame angle alpha = atan2(t_y, t_x). Both edge points lie on the
+// wall's line; edge[kLo] has the smaller coordinate along t.
+struct Observation {
+  int64_t iteration = 0;
+  Eigen::Vector2d normal = Eigen::Vector2d::UnitX();
+  double d = 0.0;  // normal . p + d = 0, d >= 0 (the sensor is in front)
+  Eigen::Vector3d normal3 = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  Eigen::Vector2d edge[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+  double z_min = 0.0;
+  double z_max = 0.0;
+  Eigen::AlignedBox3d box;
+  std::vector<Eigen::Vector3d> vertices;
+  int support = 0;
+  double rms = 0.0;
+
+  Eigen::Vector2d Direction() const { return {-normal.y(), normal.x()}; }
+  double Alpha() const { return std::atan2(normal.x(), -normal.y()); }
+  double Length() const { return (edge[1] - edge[0]).norm(); }
+};
+
+// Reduces a sensor-frame plane to a wall observation. Returns nothing for a plane that is not a
+// wall (|normal.z| > max_normal_z: floor or ceiling, ignored in 2½D) or that is degenerate
+// (non-finite numbers, zero normal, fewer than two vertices).
+std::optional<Observation> MakeObservation(const PlaneInput& input, int64_t iteration,
+                                           double max_normal_z);
+
+// Frame angle of a wall with unit 2D normal n.
+inline double AlphaOf(const Eigen::Vector2d& n) { return std::atan2(n.x(), -n.y()); }
+// Unit 2D normal of a wall with frame angle alpha.
+inline Eigen::Vector2d NormalOf(double alpha) { return {std::sin(alpha), -std::cos(alpha)}; }
+inline Eigen::Vector2d DirectionOf(double alpha) { return {std::cos(alpha), std::sin(alpha)}; }
+
+}  // namespace relplane::mapper

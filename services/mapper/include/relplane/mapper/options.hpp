@@ -1,0 +1,73 @@
+#pragma once
+// Options of the Relative Plane mapper, one plain struct per component with defaults that hold
+// for any indoor world and sensor (issue 4: "tune nothing to one scenario").
+
+#include <cstdint>
+
+namespace relplane::mapper {
+
+// §II.A plane matching on the latest untransformed observation.
+struct RegistrationOptions {
+  int last_seen_window = 5;          // iterations; a plane unseen longer cannot match
+  double max_angle = 0.2;            // rad between normals
+  double max_distance = 0.3;         // m between plane offsets d
+  double min_overlap = 0.3;          // of the shorter extent along the wall (and in height)
+  double max_wall_normal_z = 0.3;    // |normal.z| above this is floor/ceiling: not a wall (2½D)
+};
+
+// §II.A end: backtracking / loop closure against the global map.
+struct BacktrackOptions {
+  bool enabled = true;
+  double max_angle = 0.15;     // rad
+  double max_distance = 0.25;  // m between the transformed plane and the mapped line
+  double margin = 0.3;         // m the mapped extent is widened by for the overlap test
+};
+
+// §II.B grouping.
+struct GroupingOptions {
+  int min_observations = 8;      // an ungrouped rltplane is processed once it has this many
+  int ungrouped_timeout = 45;    // iterations; below min_observations by then: dropped
+  int min_common = 8;            // iterations two rltplanes must share to count as co-visible
+  int covisible_window = 60;     // co-visibility is counted over this many recent iterations
+  int recent_groups = 3;         // a grouped plane not in the last few groups is "re-seen"
+};
+
+// §II.C pairwise comparison and static edges.
+struct ComparisonOptions {
+  int min_samples = 10;            // iterations in a sub-interval to judge its static edges
+  double static_std = 0.03;        // m: a pairing with a lower standard deviation is static
+  double static_floor = 0.005;     // m: ... if also within static_ratio x the best pairing's,
+  double static_ratio = 3.0;       //    or below static_floor
+  double phase_hysteresis = 0.05;  // m: length change that flips growing <-> shrinking
+  double parallel_angle = 0.17;    // rad: planes this close in orientation count as parallel
+  int max_subinterval = 300;       // iterations; longer sub-intervals are closed (bounds cost)
+  int freeze_lag = 90;             // iterations; sub-intervals older than this are frozen
+  double min_motion = 0.05;        // m: edges must move this much in the sensor frame (std) for
+                                   // a sub-interval to tell static from dynamic edges
+};
+
+// §II.D / §II.E localisation.
+struct LocalisationOptions {
+  double min_information = 0.5;  // smallest eigenvalue (m^-2 units) of the position system
+                                 // for TRACKING; below it the motion model applies
+  double prior_weight = 1e-4;    // weight of the previous position in the least squares
+};
+
+struct StartPose {
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;  // sensor height; planes are mapped at sensor z + this
+  double yaw = 0.0;
+};
+
+struct MapperOptions {
+  RegistrationOptions registration;
+  BacktrackOptions backtrack;
+  GroupingOptions grouping;
+  ComparisonOptions comparison;
+  LocalisationOptions localisation;
+  StartPose start_pose;
+  int max_observations = 3000;  // per rltplane; older observations are dropped (bounded memory)
+};
+
+}  // namespace relplane::mapper

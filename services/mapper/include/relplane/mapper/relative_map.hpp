@@ -1,0 +1,22 @@
+#pragma once
+// §II.D Relative maps: a group's comparison chain links its rltplanes pairwise; starting from the
+// basis rltplane at (0,0,0) every other rltplane gets its relative position and orientation.
+
+#include "relplane/mapper/state.hpp"
+
+namespace relplane::mapper {
+
+// Builds the relative map of `group` from the stored comparisons.
+// The basis is the member with the most static-edge comparisons, and the chain is the maximum
+// spanning tree over static pairings weighted by their common interval: the comparison order
+// that uses the most iterations (§II.F reordering), which also routes around parallel pairs
+// whose static edges are ambiguous (§II.C). Members reached through no static pairing keep
+// their line (known == kLine) or only their orientation (kAngle).
+RelativeMap BuildRelativeMap(const Group& group, MapperState& state);
+
+// The position of `plane`'s edge `edge` given a placement of its edge `placement.ref`, using the
+// wall's length when it has been seen whole. False when the edges differ and it has not.
+bool EdgePoint(const RltPlane& plane, const Placement& placement, int edge,
+               Eigen::Vector2d* point);
+
+}  // namespace relplane::mapper

@@ -1,0 +1,73 @@
+#pragma once
+// The rltplane (Fig. 1): one wall's untransformed observations by iteration, plus what the
+// pairwise comparisons learn about it (growth phases, static edges, full length).
+
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+#include "relplane/mapper/observation.hpp"
+
+namespace relplane::mapper {
+
+class RltPlane {
+ public:
+  RltPlane(int64_t id, Observation first, double phase_hysteresis, int max_observations);
+
+  int64_t Id() const { return id_; }
+  // Appends an observation (iterations strictly increasing) and tracks growth (§II.C).
+  void Add(Observation obs);
+
+  const std::deque<Observation>& Observations() const { return observations_; }
+  const Observation& Latest() const { return observations_.back(); }
+  int64_t FirstSeen() const { return first_seen_; }
+  int64_t LastSeen() const { return observations_.back().iteration; }
+  int64_t Count() const { return count_; }
+  // Index of the first stored observation with iteration >= `iteration`.
+  size_t LowerBound(int64_t iteration) const;
+  // The observation at `iteration`, or nullptr.
+  const Observation* At(int64_t iteration) const;
+
+  // §II.C: "the interval must be split up if a plane changes state from growing to shrinking".
+  // The phase of an iteration: phases change where the visible length turns from growing to
+  // shrinking (or back), placed retroactively at the turning point.
+  // Returns the first iteration of that phase (stable over the run).
+  int64_t PhaseAt(int64_t iteration) const;
+  int64_t LatestPhaseStart() const { return phase_starts_.back(); }
+
+  // Largest visible length seen (§II.C "maximum size of a plane"); once the wall has been seen
+  // whole (both edges static at once) the mean length over those sightings.
+  double Length() const;
+  bool FullLengthKnown() const { return full_length_ > 0.0; }
+  // Marks iterations [first, last] as ones where both edges were static: the wall seen whole.
+  void MarkFull(int64_t first, int64_t last);
+  double ZMin() const { return z_min_; }
+  double ZMax() const { return z_max_; }
+
+  // Which edges the comparisons found static in the current interval (set each iteration).
+  bool static_now[2] = {false, false};
+  int64_t static_now_iteration = -1;
+
+  // Groups this plane belongs to, in creation order (§II.B).
+  std::vector<int64_t> groups;
+
+ private:
+  int64_t id_;
+  double hysteresis_;
+  size_t max_observations_;
+  std::deque<Observation> observations_;
+  int64_t first_seen_;
+  int64_t count_ = 0;
+  double max_length_ = 0.0;
+  std::vector<std::pair<int64_t, int64_t>> full_ranges_;
+  double full_length_ = 0.0;
+  double z_min_;
+  double z_max_;
+  // Growth tracking: phase starts (iteration, first of the phase), current trend and extreme.
+  std::vector<int64_t> phase_starts_;
+  bool growing_ = true;
+  double extreme_length_ = 0.0;
+  int64_t extreme_iteration_ = 0;
+};
+
+}  // namespace relplane::mapper

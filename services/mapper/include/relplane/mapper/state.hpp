@@ -1,0 +1,76 @@
+#pragma once
+// Everything the mapper knows, shared by its steps: rltplanes, comparisons, groups and their
+// relative maps, the global map and the pose history.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "relplane/common/geometry.hpp"
+#include "relplane/mapper/comparison.hpp"
+#include "relplane/mapper/rltplane.hpp"
+
+namespace relplane::mapper {
+
+// How much of a wall's placement is known: its orientation only, its line, or also the position
+// of one of its edges (`ref`) along the line.
+enum class Known : int { kAngle = 0, kLine = 1, kPoint = 2 };
+
+// A wall placed in a frame (a group's relative frame or the world): frame angle alpha (x along
+// the wall), a point on its line (the `ref` edge when known == kPoint).
+struct Placement {
+  double alpha = 0.0;
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+  int ref = -1;  // Index(Edge) of the edge `point` is, or -1
+  Known known = Known::kAngle;
+};
+
+// §II.D relative map of one group, in the frame of its basis rltplane.
+struct RelativeMap {
+  int64_t basis = -1;
+  std::map<int64_t, Placement> members;
+};
+
+// §II.B a group of rltplanes seen in the same time interval.
+struct Group {
+  int64_t id = 0;
+  std::vector<int64_t> members;  // in joining order
+  int64_t created = 0;           // iteration
+  RelativeMap relative;
+  geometry::Pose2 placement;     // world <- group frame (§II.D)
+  geometry::Pose2 prior;         // the same from the pose when the group was first placed
+  bool prior_set = false;
+  bool dirty = true;
+};
+
+using PairKey = std::pair<int64_t, int64_t>;
+inline PairKey KeyOf(int64_t a, int64_t b) { return a < b ? PairKey{a, b} : PairKey{b, a}; }
+
+struct MapperState {
+  std::map<int64_t, RltPlane> planes;
+  std::map<PairKey, Comparison> comparisons;
+  std::vector<Group> groups;                  // index == id
+  std::vector<int64_t> ungrouped;             // §II.B ungrouped list, oldest first
+  std::set<int64_t> recent;                   // seen within the last-seen window (§II.A)
+  std::map<int64_t, Placement> global;        // §II.D global map: plane id -> world placement
+  std::map<int64_t, int64_t> placed_by;       // plane id -> group index that placed it
+  std::map<int64_t, geometry::Pose2> poses;   // iteration -> estimated pose (recent only)
+  int64_t next_id = 0;
+  int64_t first_iteration = -1;
+  bool map_changed = false;
+
+  RltPlane* Plane(int64_t id) {
+    auto it = planes.find(id);
+    return it == planes.end() ? nullptr : &it->second;
+  }
+  const Comparison* FindComparison(int64_t a, int64_t b) const {
+    auto it = comparisons.find(KeyOf(a, b));
+    return it == comparisons.end() ? nullptr : &it->second;
+  }
+  bool InGroup(int64_t plane, int64_t group) const;
+};
+
+}  // namespace relplane::mapper

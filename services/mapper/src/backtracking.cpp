@@ -1,0 +1,46 @@
+#include "relplane/mapper/backtracking.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "relplane/mapper/relative_map.hpp"
+
+namespace relplane::mapper {
+
+int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const MapperState& state,
+                    const std::set<int64_t>& taken, const BacktrackOptions& options) {
+  if (!options.enabled) return -1;
+  const double alpha = geometry::WrapAngle(pose.yaw + obs.Alpha());
+  const Eigen::Vector2d e0 = pose * obs.edge[0], e1 = pose * obs.edge[1];
+  double best = -1.0;
+  int64_t best_id = -1;
+  for (const auto& [id, placed] : state.global) {
+    if (taken.count(id) || placed.known == Known::kAngle) continue;
+    const double dalpha = std::abs(geometry::WrapAngle(placed.alpha - alpha));
+    if (dalpha > options.max_angle) continue;
+    const Eigen::Vector2d n = NormalOf(placed.alpha), t = DirectionOf(placed.alpha);
+    const double dist = std::abs(n.dot(0.5 * (e0 + e1) - placed.point));
+    if (dist > options.max_distance) continue;
+    // Overlap along the wall with the mapped extent, widened by a margin.
+    const RltPlane* plane = state.planes.count(id) ? &state.planes.at(id) : nullptr;
+    if (plane == nullptr) continue;
+    if (placed.known == Known::kPoint) {
+      Eigen::Vector2d lo, hi;
+      const double length = plane->Length();
+      if (placed.ref == 0) {
+        lo = placed.point, hi = placed.point + length * t;
+      } else {
+        hi = placed.point, lo = placed.point - length * t;
+      }
+      const double m0 = t.dot(lo) - options.margin, m1 = t.dot(hi) + options.margin;
+      const double o0 = std::min(t.dot(e0), t.dot(e1)), o1 = std::max(t.dot(e0), t.dot(e1));
+      if (std::min(m1, o1) - std::max(m0, o0) <= 0.0) continue;
+    }
+    const double score = (1.0 - dalpha / options.max_angle) + (1.0 - dist / options.max_distance) +
+                         (placed.known == Known::kPoint ? 1.0 : 0.0);
+    if (score > best) best = score, best_id = id;
+  }
+  return best_id;
+}
+
+}  // namespace relplane::mapper

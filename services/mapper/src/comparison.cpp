@@ -1,0 +1,274 @@
+#include "relplane/mapper/comparison.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "relplane/common/geometry.hpp"
+
+namespace relplane::mapper {
+namespace {
+
+using Eigen::Vector2d;
+
+Eigen::Matrix2d RotationT(double alpha) {
+  const double c = std::cos(alpha), s = std::sin(alpha);
+  Eigen::Matrix2d r;
+  r << c, s, -s, c;  // R(alpha)^T
+  return r;
+}
+
+// Adds one iteration's untransformed pair to the sub-interval's sums (§II.C algorithm: "rotate
+// both planes so rltplane 1 is at 0 degrees, add the dx dy to L_av, the orientation to O_av").
+void AddSample(const Observation& oa, const Observation& ob, SubInterval* s) {
+  const double alpha_a = oa.Alpha(), alpha_b = ob.Alpha();
+  const double dalpha = geometry::WrapAngle(alpha_b - alpha_a);
+  s->n += 1.0;
+  s->sin_sum += std::sin(dalpha);
+  s->cos_sum += std::cos(dalpha);
+  const Eigen::Matrix2d rat = RotationT(alpha_a), rbt = RotationT(alpha_b);
+  const Vector2d nb_in_a = rat * ob.normal, na_in_b = rbt * oa.normal;
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      const Vector2d ab = rat * (ob.edge[j] - oa.edge[i]);  // B's edge j from A's edge i
+      const Vector2d ba = rbt * (oa.edge[i] - ob.edge[j]);  // A's edge i from B's edge j
+      double* p = s->pair[0][i][j];
+      p[0] += ab.x(), p[1] += ab.y(), p[2] += ab.x() * ab.x(), p[3] += ab.y() * ab.y();
+      double* q = s->pair[1][j][i];
+      q[0] += ba.x(), q[1] += ba.y(), q[2] += ba.x() * ba.x(), q[3] += ba.y() * ba.y();
+    }
+    const double ca = nb_in_a.dot(rat * (ob.edge[0] - oa.edge[i]));
+    s->line[0][i][0] += ca, s->line[0][i][1] += ca * ca;
+    const double cb = na_in_b.dot(rbt * (oa.edge[0] - ob.edge[i]));
+    s->line[1][i][0] += cb, s->line[1][i][1] += cb * cb;
+  }
+  const Vector2d pts[4] = {oa.edge[0], oa.edge[1], ob.edge[0], ob.edge[1]};
+  for (int k = 0; k < 4; ++k) {
+    double* e = s->edges[k];
+    e[0] += pts[k].x(), e[1] += pts[k].y();
+    e[2] += pts[k].x() * pts[k].x(), e[3] += pts[k].y() * pts[k].y();
+  }
+}
+
+double Std2(const double* sums, double n) {
+  const double vx = sums[2] / n - (sums[0] / n) * (sums[0] / n);
+  const double vy = sums[3] / n - (sums[1] / n) * (sums[1] / n);
+  return std::sqrt(std::max(0.0, vx) + std::max(0.0, vy));
+}
+
+double Std1(const double* sums, double n) {
+  return std::sqrt(std::max(0.0, sums[1] / n - (sums[0] / n) * (sums[0] / n)));
+}
+
+struct Verdict {
+  DirectedStats stats[2];
+  bool ambiguous = false;
+  bool static_a[2] = {false, false};
+  bool static_b[2] = {false, false};
+};
+
+// §II.C static edges: of the four pairings the one with the lowest standard deviation pairs the
+// static edges. Every pairing under the threshold is static (a wall seen whole has two).
+// Parallel planes across from each other can show a static-static and a dynamic-dynamic pairing
+// that are both steady: without other information the two cannot be told apart, so such a
+// sub-interval gives no location along the walls (the reordering in relative_map.cpp then
+// reaches these planes through other comparisons).
+Verdict Judge(const SubInterval& s, const ComparisonOptions& options) {
+  Verdict v;
+  const double n = s.n;
+  if (n < options.min_samples) return v;
+  double motion = 0.0;
+  for (const auto& e : s.edges) motion = std::max(motion, Std2(e, n));
+  const double dalpha = std::atan2(s.sin_sum, s.cos_sum);
+  const bool parallel = std::abs(std::sin(dalpha)) < std::sin(options.parallel_angle);
+  // Lines are steady whether or not the sensor moves relative to their edges.
+  for (int dir = 0; dir < 2; ++dir) {
+    for (int i = 0; i < 2; ++i) {
+      if (Std1(s.line[dir][i], n) <= options.static_std && (motion >= options.min_motion ||
+                                                             parallel)) {
+        v.stats[dir].line_sum[i] += s.line[dir][i][0];
+        v.stats[dir].line_count[i] += n;
+      }
+    }
+  }
+  if (motion < options.min_motion) return v;  // a still sensor makes every edge look static
+  double std_ij[2][2];
+  int best_i = 0, best_j = 0;
+  int low = 0;
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      std_ij[i][j] = Std2(s.pair[0][i][j], n);
+      if (std_ij[i][j] < std_ij[best_i][best_j]) best_i = i, best_j = j;
+      if (std_ij[i][j] <= options.static_std) ++low;
+    }
+  }
+  if (std_ij[best_i][best_j] > options.static_std) return v;
+  // Pairings close to the best one are static too; one far above it has a slowly moving edge
+  // (e.g. an edge occluded by a door jamb), however small its spread.
+  const double threshold = std::min(
+      options.static_std,
+      std::max(options.static_floor, options.static_ratio * std_ij[best_i][best_j]));
+  low = 0;
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) low += std_ij[i][j] <= threshold ? 1 : 0;
+  }
+  if (parallel && low == 2 && std_ij[1 - best_i][1 - best_j] <= threshold) {
+    v.ambiguous = true;
+    return v;
+  }
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      if (std_ij[i][j] > threshold) continue;
+      v.static_a[i] = v.static_b[j] = true;
+      v.stats[0].pair_sum[i][j] += Vector2d(s.pair[0][i][j][0], s.pair[0][i][j][1]);
+      v.stats[0].pair_count[i][j] += n;
+      v.stats[0].pair_sq[i][j] += s.pair[0][i][j][2] + s.pair[0][i][j][3];
+      v.stats[1].pair_sq[j][i] += s.pair[1][j][i][2] + s.pair[1][j][i][3];
+      v.stats[1].pair_sum[j][i] += Vector2d(s.pair[1][j][i][0], s.pair[1][j][i][1]);
+      v.stats[1].pair_count[j][i] += n;
+    }
+  }
+  return v;
+}
+
+}  // namespace
+
+DirectedStats::DirectedStats() {
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      pair_sum[i][j].setZero();
+      pair_sq[i][j] = 0.0;
+      pair_count[i][j] = 0.0;
+    }
+    line_sum[i] = 0.0;
+    line_count[i] = 0.0;
+  }
+}
+
+void DirectedStats::Add(const DirectedStats& other) {
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      pair_sum[i][j] += other.pair_sum[i][j];
+      pair_sq[i][j] += other.pair_sq[i][j];
+      pair_count[i][j] += other.pair_count[i][j];
+    }
+    line_sum[i] += other.line_sum[i];
+    line_count[i] += other.line_count[i];
+  }
+}
+
+bool DirectedStats::Pair(int i, int j, Eigen::Vector2d* mean) const {
+  if (pair_count[i][j] <= 0.0) return false;
+  *mean = pair_sum[i][j] / pair_count[i][j];
+  return true;
+}
+
+double DirectedStats::PairStd(int i, int j) const {
+  if (pair_count[i][j] <= 0.0) return 0.0;
+  const Eigen::Vector2d mean = pair_sum[i][j] / pair_count[i][j];
+  return std::sqrt(std::max(0.0, pair_sq[i][j] / pair_count[i][j] - mean.squaredNorm()));
+}
+
+bool DirectedStats::Line(int i, double* mean) const {
+  if (line_count[i] <= 0.0) return false;
+  *mean = line_sum[i] / line_count[i];
+  return true;
+}
+
+double Comparison::DeltaAlpha(int64_t from) const {
+  const double d = std::atan2(sin_sum_, cos_sum_);
+  return from == a_ ? d : -d;
+}
+
+void Comparison::Update(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options,
+                        int max_gap) {
+  Rebuild(a, b, now, options, max_gap);
+  Summarise(a, b, now, options);
+}
+
+void Comparison::Rebuild(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options,
+                         int max_gap) {
+  // A growth phase that started in the past (found with some lag) re-splits the open
+  // sub-intervals from that iteration on.
+  int64_t redo_from = INT64_MAX;
+  if (phase_seen_a_ != a.LatestPhaseStart()) redo_from = std::min(redo_from, a.LatestPhaseStart());
+  if (phase_seen_b_ != b.LatestPhaseStart()) redo_from = std::min(redo_from, b.LatestPhaseStart());
+  phase_seen_a_ = a.LatestPhaseStart();
+  phase_seen_b_ = b.LatestPhaseStart();
+  if (redo_from != INT64_MAX && redo_from < processed_until_) {
+    while (!open_.empty() && open_.back().last >= redo_from) open_.pop_back();
+    processed_until_ = open_.empty() ? frozen_until_ : open_.back().last + 1;
+  }
+  // Walk the common iterations not yet summed.
+  const auto& obs_a = a.Observations();
+  const auto& obs_b = b.Observations();
+  size_t ia = a.LowerBound(processed_until_), ib = b.LowerBound(processed_until_);
+  while (ia < obs_a.size() && ib < obs_b.size()) {
+    const int64_t ka = obs_a[ia].iteration, kb = obs_b[ib].iteration;
+    if (ka < kb) {
+      ++ia;
+      continue;
+    }
+    if (kb < ka) {
+      ++ib;
+      continue;
+    }
+    const int64_t pa = a.PhaseAt(ka), pb = b.PhaseAt(ka);
+    const bool extend = !open_.empty() && open_.back().phase_a == pa &&
+                        open_.back().phase_b == pb && ka - open_.back().last <= max_gap &&
+                        open_.back().n < options.max_subinterval;
+    if (!extend) {
+      SubInterval s;
+      s.first = ka;
+      s.phase_a = pa;
+      s.phase_b = pb;
+      open_.push_back(s);
+    }
+    open_.back().last = ka;
+    AddSample(obs_a[ia], obs_b[ib], &open_.back());
+    ++ia;
+    ++ib;
+  }
+  processed_until_ = std::max(processed_until_, now + 1);
+  // Freeze sub-intervals that can no longer be re-split.
+  while (open_.size() > 1 && open_.front().last < now - options.freeze_lag) {
+    const SubInterval& s = open_.front();
+    const Verdict v = Judge(s, options);
+    frozen_[0].Add(v.stats[0]);
+    frozen_[1].Add(v.stats[1]);
+    frozen_sin_ += s.sin_sum;
+    frozen_cos_ += s.cos_sum;
+    frozen_n_ += s.n;
+    frozen_ambiguous_ += v.ambiguous ? 1 : 0;
+    frozen_until_ = s.last + 1;
+    open_.erase(open_.begin());
+  }
+}
+
+void Comparison::Summarise(RltPlane& a, RltPlane& b, int64_t now,
+                           const ComparisonOptions& options) {
+  total_[0] = frozen_[0];
+  total_[1] = frozen_[1];
+  sin_sum_ = frozen_sin_;
+  cos_sum_ = frozen_cos_;
+  common_ = frozen_n_;
+  ambiguous_ = frozen_ambiguous_;
+  for (const SubInterval& s : open_) {
+    const Verdict v = Judge(s, options);
+    total_[0].Add(v.stats[0]);
+    total_[1].Add(v.stats[1]);
+    sin_sum_ += s.sin_sum;
+    cos_sum_ += s.cos_sum;
+    common_ += s.n;
+    ambiguous_ += v.ambiguous ? 1 : 0;
+    if (v.static_a[0] && v.static_a[1]) a.MarkFull(s.first, s.last);
+    if (v.static_b[0] && v.static_b[1]) b.MarkFull(s.first, s.last);
+    if (s.last == now) {  // the interval that includes this iteration: edges static now
+      for (int e = 0; e < 2; ++e) {
+        a.static_now[e] = a.static_now[e] || v.static_a[e];
+        b.static_now[e] = b.static_now[e] || v.static_b[e];
+      }
+    }
+  }
+}
+
+}  // namespace relplane::mapper

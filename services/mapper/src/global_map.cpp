@@ -1,0 +1,153 @@
+#include "relplane/mapper/global_map.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "relplane/mapper/relative_map.hpp"
+
+namespace relplane::mapper {
+namespace {
+
+using Eigen::Matrix2d;
+using Eigen::Vector2d;
+using geometry::Pose2;
+
+Pose2 PoseAt(const MapperState& state, int64_t iteration, const MapperOptions& options) {
+  auto it = state.poses.find(iteration);
+  if (it != state.poses.end()) return it->second;
+  return {options.start_pose.x, options.start_pose.y, options.start_pose.yaw};
+}
+
+// The plane's latest observation up to `upto` whose pose is known (its first when `first`).
+const Observation& ObservedWithPose(const RltPlane& plane, const MapperState& state, int64_t upto,
+                                    bool first) {
+  const auto& all = plane.Observations();
+  if (first) return all.front();
+  for (size_t i = plane.LowerBound(upto + 1); i > 0; --i) {
+    if (state.poses.count(all[i - 1].iteration)) return all[i - 1];
+  }
+  return all.front();
+}
+
+struct Link {
+  Placement relative;
+  Placement global;
+  const RltPlane* plane;
+};
+
+// Least squares for world <- group: rotation from the mean orientation difference, translation
+// from the links' lines (1 equation each) and shared static edges (1 more along the wall).
+Pose2 Solve(const std::vector<Link>& links, const Pose2& prior, double prior_weight) {
+  double s = 0.0, c = 0.0;
+  for (const Link& l : links) {
+    const double d = l.global.alpha - l.relative.alpha;
+    s += std::sin(d), c += std::cos(d);
+  }
+  const double yaw = links.empty() ? prior.yaw : std::atan2(s, c);
+  const Matrix2d rot = Eigen::Rotation2Dd(yaw).toRotationMatrix();
+  Matrix2d a = prior_weight * Matrix2d::Identity();
+  Vector2d b = prior_weight * prior.Translation();
+  for (const Link& l : links) {
+    if (l.relative.known == Known::kAngle || l.global.known == Known::kAngle) continue;
+    const Vector2d n = NormalOf(l.global.alpha);
+    a += n * n.transpose();
+    b += n * n.dot(l.global.point - rot * l.relative.point);
+    Vector2d rel_point;
+    if (l.global.known == Known::kPoint && EdgePoint(*l.plane, l.relative, l.global.ref, &rel_point)) {
+      const Vector2d t = DirectionOf(l.global.alpha);
+      a += t * t.transpose();
+      b += t * t.dot(l.global.point - rot * rel_point);
+    }
+  }
+  const Vector2d t = a.ldlt().solve(b);
+  return {t.x(), t.y(), yaw};
+}
+
+Placement Apply(const Pose2& pose, const Placement& p) {
+  Placement out = p;
+  out.alpha = geometry::WrapAngle(pose.yaw + p.alpha);
+  out.point = pose * p.point;
+  return out;
+}
+
+}  // namespace
+
+Placement PlacementOf(const Observation& obs, const Pose2& pose, int ref) {
+  Placement local;
+  local.alpha = obs.Alpha();
+  local.point = ref >= 0 ? obs.edge[ref] : Vector2d(-obs.d * obs.normal);
+  local.ref = ref;
+  local.known = ref >= 0 ? Known::kPoint : Known::kLine;
+  return Apply(pose, local);
+}
+
+void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options) {
+  // Forget what the re-placed groups placed.
+  for (auto it = state.placed_by.begin(); it != state.placed_by.end();) {
+    if (static_cast<size_t>(it->second) >= from) {
+      state.global.erase(it->first);
+      it = state.placed_by.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  const Pose2 start{options.start_pose.x, options.start_pose.y, options.start_pose.yaw};
+  for (size_t g = from; g < state.groups.size(); ++g) {
+    Group& group = state.groups[g];
+    if (group.dirty) {
+      group.relative = BuildRelativeMap(group, state);
+      group.dirty = false;
+    }
+    std::vector<Link> links;
+    for (const auto& [id, rel] : group.relative.members) {
+      auto it = state.global.find(id);
+      if (it != state.global.end()) links.push_back({rel, it->second, state.Plane(id)});
+    }
+    // Prior: the basis as observed when the group was first placed, from the pose then. It only
+    // decides directions the links leave open.
+    const RltPlane* basis = state.Plane(group.relative.basis);
+    if (!group.prior_set && basis != nullptr) {
+      const Observation* obs = &ObservedWithPose(*basis, state, group.created, g == 0);
+      const Placement p = PlacementOf(*obs, PoseAt(state, obs->iteration, options),
+                                      group.relative.members[basis->Id()].ref);
+      group.prior = {p.point.x(), p.point.y(), p.alpha};
+      group.prior_set = true;
+    }
+    const Pose2 prior = group.prior_set ? group.prior : start;
+    if (links.empty()) {
+      // §II.D "the first grouping can be placed on the global map by comparing the relative
+      // map coordinates of each rltplane to its first observation".
+      // Only observations made from the start pose itself when there are any.
+      bool any_at_start = false;
+      for (const auto& [id, rel] : group.relative.members) {
+        any_at_start |= state.Plane(id)->FirstSeen() == state.first_iteration;
+      }
+      for (const auto& [id, rel] : group.relative.members) {
+        const RltPlane* plane = state.Plane(id);
+        if (any_at_start && plane->FirstSeen() != state.first_iteration) continue;
+        const Observation& first = plane->Observations().front();
+        const int ref = rel.known == Known::kPoint ? rel.ref : -1;
+        links.push_back({rel, PlacementOf(first, PoseAt(state, first.iteration, options), ref),
+                         plane});
+      }
+    }
+    group.placement = Solve(links, prior, options.localisation.prior_weight);
+    for (const auto& [id, rel] : group.relative.members) {
+      auto it = state.global.find(id);
+      // Hard chaining: the first group to place a plane wins, unless a later one knows more.
+      if (it != state.global.end() && it->second.known >= rel.known) continue;
+      Placement world = Apply(group.placement, rel);
+      if (rel.known == Known::kAngle) {
+        // No comparison pins it yet: its line as seen when the group was made, from the pose
+        // then (§II.A end: "transformed using current position").
+        const Observation& obs = ObservedWithPose(*state.Plane(id), state, group.created, g == 0);
+        world = PlacementOf(obs, PoseAt(state, obs.iteration, options), -1);
+      }
+      state.global[id] = world;
+      state.placed_by[id] = static_cast<int64_t>(g);
+    }
+  }
+  state.map_changed = true;
+}
+
+}  // namespace relplane::mapper

@@ -1,0 +1,112 @@
+#include "relplane/mapper/grouping.hpp"
+
+#include <algorithm>
+
+namespace relplane::mapper {
+namespace {
+
+bool Covisible(MapperState& state, const RltPlane& r, int64_t other, int64_t now,
+               const GroupingOptions& options) {
+  const RltPlane* m = state.Plane(other);
+  return m != nullptr &&
+         CommonRecent(r, *m, now, options.covisible_window) >= options.min_common;
+}
+
+// §II.B "checks if an ungrouped rltplane is present in the same time interval as every other
+// rltplane in a given grouping".
+bool FitsGroup(MapperState& state, const RltPlane& r, const Group& g, int64_t now,
+               const GroupingOptions& options) {
+  if (std::find(g.members.begin(), g.members.end(), r.Id()) != g.members.end()) return false;
+  for (int64_t m : g.members) {
+    if (!Covisible(state, r, m, now, options)) return false;
+  }
+  return true;
+}
+
+void Join(MapperState& state, Group& g, int64_t id) {
+  g.members.push_back(id);
+  g.dirty = true;
+  state.Plane(id)->groups.push_back(g.id);
+}
+
+// Places one rltplane that is ready to be grouped.
+void Place(MapperState& state, int64_t id, int64_t now, const GroupingOptions& options) {
+  const RltPlane& r = *state.Plane(id);
+  const int n = static_cast<int>(state.groups.size());
+  const int first = std::max(0, n - options.recent_groups);
+  for (int g = n - 1; g >= first; --g) {
+    if (FitsGroup(state, r, state.groups[g], now, options)) {
+      Join(state, state.groups[g], id);
+      return;
+    }
+  }
+  // §II.B "a new one is created [...] with rltplanes from the previous grouping that are in the
+  // same time interval as the ungrouped rltplane".
+  Group group;
+  group.id = n;
+  group.created = now;
+  state.groups.push_back(group);
+  Group& fresh = state.groups.back();
+  Join(state, fresh, id);
+  for (int g = n - 1; g >= first; --g) {
+    for (int64_t m : state.groups[g].members) {
+      if (std::find(fresh.members.begin(), fresh.members.end(), m) != fresh.members.end()) {
+        continue;
+      }
+      if (Covisible(state, *state.Plane(id), m, now, options)) Join(state, fresh, m);
+    }
+  }
+}
+
+}  // namespace
+
+int CommonRecent(const RltPlane& a, const RltPlane& b, int64_t now, int window) {
+  const int64_t from = now - window + 1;
+  const auto& oa = a.Observations();
+  const auto& ob = b.Observations();
+  size_t i = a.LowerBound(from), j = b.LowerBound(from);
+  int common = 0;
+  while (i < oa.size() && j < ob.size()) {
+    if (oa[i].iteration < ob[j].iteration) {
+      ++i;
+    } else if (ob[j].iteration < oa[i].iteration) {
+      ++j;
+    } else {
+      ++common, ++i, ++j;
+    }
+  }
+  return common;
+}
+
+void UpdateGroups(MapperState& state, const std::vector<int64_t>& visible, int64_t now,
+                  const GroupingOptions& options) {
+  // The ungrouped list: ready rltplanes are placed, stale ones dropped.
+  std::vector<int64_t> waiting;
+  for (int64_t id : state.ungrouped) {
+    RltPlane* r = state.Plane(id);
+    if (r == nullptr) continue;
+    if (r->Count() >= options.min_observations) {
+      Place(state, id, now, options);
+      continue;
+    }
+    if (now - r->FirstSeen() > options.ungrouped_timeout) {
+      state.recent.erase(id);
+      state.planes.erase(id);
+      continue;
+    }
+    waiting.push_back(id);
+  }
+  state.ungrouped = std::move(waiting);
+  // Re-seen rltplanes (backtracking, loop closure: §II.A end) rejoin the current groups so the
+  // new relative maps link to them.
+  const int n = static_cast<int>(state.groups.size());
+  for (int64_t id : visible) {
+    RltPlane* r = state.Plane(id);
+    if (r == nullptr || r->groups.empty()) continue;
+    if (r->groups.back() >= n - options.recent_groups) continue;
+    if (CommonRecent(*r, *r, now, options.covisible_window) < options.min_common) continue;
+    Place(state, id, now, options);
+  }
+}
+
+}  // namespace relplane::mapper

@@ -1,0 +1,67 @@
+#include "relplane/mapper/registration.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace relplane::mapper {
+namespace {
+
+// Overlap of [a0, a1] and [b0, b1] as a fraction of the shorter one.
+double Overlap(double a0, double a1, double b0, double b1) {
+  const double shorter = std::max(std::min(a1 - a0, b1 - b0), 1e-3);
+  return std::max(0.0, std::min(a1, b1) - std::max(a0, b0)) / shorter;
+}
+
+}  // namespace
+
+double MatchScore(const Observation& latest, const Observation& obs,
+                  const RegistrationOptions& options) {
+  // Last seen test (§II.A: "only use planes seen in the last few iterations").
+  const int64_t gap = obs.iteration - latest.iteration;
+  if (gap <= 0 || gap > options.last_seen_window) return -1.0;
+  // Plane equation test.
+  const double angle = std::acos(std::clamp(latest.normal.dot(obs.normal), -1.0, 1.0));
+  const double dd = std::abs(latest.d - obs.d);
+  if (angle > options.max_angle || dd > options.max_distance) return -1.0;
+  // Bounding box test, along the wall and in height: adjacent planes must not match.
+  const Eigen::Vector2d t = obs.Direction();
+  double l0 = t.dot(latest.edge[0]), l1 = t.dot(latest.edge[1]);
+  if (l0 > l1) std::swap(l0, l1);
+  const double o_along = Overlap(l0, l1, t.dot(obs.edge[0]), t.dot(obs.edge[1]));
+  const double o_height = Overlap(latest.z_min, latest.z_max, obs.z_min, obs.z_max);
+  if (o_along < options.min_overlap || o_height < options.min_overlap) return -1.0;
+  return (1.0 - angle / options.max_angle) + (1.0 - dd / options.max_distance) +
+         std::min(o_along, 1.0) + std::min(o_height, 1.0) - 0.1 * static_cast<double>(gap - 1);
+}
+
+std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observations,
+                                          const MapperState& state,
+                                          const RegistrationOptions& options) {
+  std::vector<std::tuple<double, size_t, int64_t>> candidates;  // score, observation, rltplane
+  for (int64_t id : state.recent) {
+    const auto it = state.planes.find(id);
+    if (it == state.planes.end()) continue;
+    const Observation& latest = it->second.Latest();
+    for (size_t k = 0; k < observations.size(); ++k) {
+      const double score = MatchScore(latest, observations[k], options);
+      if (score >= 0.0) candidates.emplace_back(score, k, id);
+    }
+  }
+  // The best score wins; ties broken by observation index then id, for determinism.
+  std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) {
+    if (std::get<0>(x) != std::get<0>(y)) return std::get<0>(x) > std::get<0>(y);
+    if (std::get<1>(x) != std::get<1>(y)) return std::get<1>(x) < std::get<1>(y);
+    return std::get<2>(x) < std::get<2>(y);
+  });
+  std::vector<int64_t> match(observations.size(), -1);
+  std::set<int64_t> taken;
+  for (const auto& [score, k, id] : candidates) {
+    if (match[k] >= 0 || taken.count(id)) continue;
+    match[k] = id;
+    taken.insert(id);
+  }
+  return match;
+}
+
+}  // namespace relplane::mapper
