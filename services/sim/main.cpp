@@ -37,6 +37,19 @@ void Publish(bus::Bus& bus, ServiceStats& stats, const std::string& channel, con
   if (!bus::Publish(bus, channel, msg)) stats.Rejected(channel + ": the transport refused it");
 }
 
+// A flag check whose message reads well (CLI11's range check prints the largest double).
+CLI::Validator NotNegative() {
+  return CLI::Validator(
+      [](std::string& text) {
+        try {
+          if (std::stod(text) >= 0.0) return std::string();
+        } catch (const std::exception&) {
+        }
+        return "'" + text + "' must be a number >= 0";
+      },
+      "NUMBER>=0");
+}
+
 int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double rate,
         int64_t iterations, bus::Bus& bus) {
   ServiceStats stats("relplane-sim", kBudgetMs);
@@ -92,9 +105,8 @@ int main(int argc, char** argv) {
   app.add_option("--rate", rate,
                  "Publishing pace in iterations/s (0: as fast as possible; default: the "
                  "scenario's sim.rate_hz). Simulated time always steps by 1/sim.rate_hz")
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--iterations", iterations, "Stop after N iterations")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NotNegative());
+  app.add_option("--iterations", iterations, "Stop after N iterations")->check(NotNegative());
   app.add_flag("--check-config", check_config, "Check the `sim` section of --config and exit");
   if (const auto code = cli::Parse(app, argc, argv)) return *code;
 
