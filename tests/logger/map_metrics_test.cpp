@@ -1,0 +1,143 @@
+// Map metrics against hand-made worlds and maps with known answers.
+#include <gtest/gtest.h>
+
+#include "fixtures.hpp"
+#include "relplane/eval/map_metrics.hpp"
+
+namespace relplane::eval {
+namespace {
+
+using testing::Floor;
+using testing::LoopInRoom;
+using testing::Room;
+using testing::Wall;
+
+// The room's four walls as a mapper would report them, ids 10..13.
+MapSnapshot PerfectMap() {
+  MapSnapshot map;
+  map.planes = {Wall(10, {-1, -2}, {5, -2}), Wall(11, {5, -2}, {5, 2}), Wall(12, {5, 2}, {-1, 2}),
+                Wall(13, {-1, 2}, {-1, -2})};
+  return map;
+}
+
+MapMetrics Score(const MapSnapshot& map, const MapSnapshot& world = Room()) {
+  return ComputeMapMetrics(world, map, LoopInRoom(), EvalOptions{});
+}
+
+TEST(MapMetrics, PerfectMapMatchesEveryWallAndIgnoresTheFloor) {
+  MapSnapshot map = PerfectMap();
+  map.planes.push_back(Floor(20));
+  const MapMetrics m = Score(map);
+  EXPECT_TRUE(m.has_truth);
+  EXPECT_EQ(m.true_walls, 4);
+  EXPECT_EQ(m.expected_walls, 4);
+  EXPECT_EQ(m.mapped_planes, 5);
+  EXPECT_EQ(m.mapped_walls, 4);
+  EXPECT_EQ(m.walls_mapped, 4);
+  EXPECT_EQ(m.duplicates, 0);
+  EXPECT_EQ(m.spurious, 0);
+  EXPECT_EQ(m.missed, 0);
+  EXPECT_NEAR(m.normal_error_deg.max, 0.0, 1e-6);
+  EXPECT_NEAR(m.offset_error_m.max, 0.0, 1e-9);
+  EXPECT_NEAR(m.endpoint_error_m.max, 0.0, 1e-9);
+  ASSERT_EQ(m.walls.size(), 4u);
+  EXPECT_EQ(m.walls[2].mapped_ids, std::vector<int64_t>{12});
+  EXPECT_NEAR(m.walls[2].overlap_m, 6.0, 1e-9);
+}
+
+TEST(MapMetrics, DuplicatedWallIsCountedOnceAsADuplicate) {
+  MapSnapshot map = PerfectMap();
+  // A second, shorter plane on the south wall, 0.1 m off: the same wall mapped twice.
+  map.planes.push_back(Wall(14, {0, -1.9}, {3, -1.9}));
+  const MapMetrics m = Score(map);
+  EXPECT_EQ(m.walls_mapped, 4);
+  EXPECT_EQ(m.duplicates, 1);
+  EXPECT_EQ(m.spurious, 0);
+  // The longer overlap is the best match; errors are the best match's.
+  EXPECT_EQ(m.walls[0].mapped_ids, (std::vector<int64_t>{10, 14}));
+  EXPECT_NEAR(m.walls[0].offset_error_m, 0.0, 1e-9);
+}
+
+TEST(MapMetrics, ThreeCopiesOfOneWallAreTwoDuplicates) {
+  MapSnapshot map = PerfectMap();
+  map.planes.push_back(Wall(14, {0, -1.9}, {3, -1.9}));
+  map.planes.push_back(Wall(15, {3, -2.05}, {4.5, -2.05}));
+  EXPECT_EQ(Score(map).duplicates, 2);
+}
+
+TEST(MapMetrics, PlanesMatchingNoWallAreSpurious) {
+  MapSnapshot map = PerfectMap();
+  map.planes.push_back(Wall(30, {1, -1}, {2, 1}));         // diagonal across the room
+  map.planes.push_back(Wall(31, {-1, -1.4}, {5, -1.4}));   // parallel, 0.6 m off the south wall
+  map.planes.push_back(Wall(32, {7, -2}, {9, -2}));        // on the south wall's line, past its end
+  const MapMetrics m = Score(map);
+  EXPECT_EQ(m.spurious, 3);
+  EXPECT_EQ(m.spurious_ids, (std::vector<int64_t>{30, 31, 32}));
+  EXPECT_EQ(m.duplicates, 0);
+  EXPECT_EQ(m.walls_mapped, 4);
+}
+
+TEST(MapMetrics, SeenButUnmappedWallIsMissed) {
+  MapSnapshot map = PerfectMap();
+  map.planes.erase(map.planes.begin() + 1);  // the east wall, which the loop faces
+  const MapMetrics m = Score(map);
+  EXPECT_EQ(m.walls_mapped, 3);
+  EXPECT_EQ(m.expected_walls, 4);
+  EXPECT_EQ(m.missed, 1);
+  EXPECT_TRUE(m.walls[1].expected);
+  EXPECT_TRUE(m.walls[1].mapped_ids.empty());
+}
+
+TEST(MapMetrics, WallsOutOfSightAreNotExpected) {
+  MapSnapshot world = Room();
+  world.planes.push_back(Wall(5, {-1, -3}, {5, -3}));    // behind the south wall: occluded
+  world.planes.push_back(Wall(6, {40, -2}, {40, 2}));    // far beyond the sensor's range
+  const MapMetrics m = Score(PerfectMap(), world);
+  EXPECT_EQ(m.true_walls, 6);
+  EXPECT_EQ(m.expected_walls, 4);
+  EXPECT_EQ(m.missed, 0);
+  EXPECT_FALSE(m.walls[4].expected);
+  EXPECT_FALSE(m.walls[5].expected);
+}
+
+TEST(MapMetrics, ErrorsOfAnOffsetAndOverlongWall) {
+  MapSnapshot map = PerfectMap();
+  // The south wall 0.05 m inside the room and 0.2 m too long at its east end.
+  map.planes[0] = Wall(10, {-1, -1.95}, {5.2, -1.95});
+  // The east wall turned by 2 degrees about its midpoint.
+  const double half = 2.0, tilt = 2.0 * M_PI / 180.0;
+  map.planes[1] = Wall(11, {5 + half * std::sin(tilt), -half * std::cos(tilt)},
+                       {5 - half * std::sin(tilt), half * std::cos(tilt)});
+  const MapMetrics m = Score(map);
+  EXPECT_EQ(m.walls_mapped, 4);
+  EXPECT_NEAR(m.walls[0].offset_error_m, 0.05, 1e-6);
+  EXPECT_NEAR(m.walls[0].normal_error_deg, 0.0, 1e-6);
+  // One end is only 0.05 m off, the other also 0.2 m beyond the wall (order: along the wall).
+  const double* ends = m.walls[0].endpoint_error_m;
+  EXPECT_NEAR(std::min(ends[0], ends[1]), 0.05, 1e-6);
+  EXPECT_NEAR(std::max(ends[0], ends[1]), std::hypot(0.05, 0.2), 1e-6);
+  EXPECT_NEAR(m.walls[1].normal_error_deg, 2.0, 1e-4);
+  EXPECT_NEAR(m.walls[1].offset_error_m, 0.0, 1e-6);
+  EXPECT_NEAR(m.normal_error_deg.max, 2.0, 1e-4);
+  EXPECT_NEAR(m.endpoint_error_m.max, std::hypot(0.05, 0.2), 1e-6);
+}
+
+TEST(MapMetrics, WallsOfMapsNeedAnExtent) {
+  MapSnapshot map = PerfectMap();
+  map.planes[0].vertices.resize(1);
+  int64_t without_extent = 0;
+  EXPECT_EQ(WallsOf(map.planes, &without_extent).size(), 3u);
+  EXPECT_EQ(without_extent, 1);
+  EXPECT_EQ(Score(map).mapped_without_extent, 1);
+}
+
+TEST(MapMetrics, WithoutTruthNothingIsSpurious) {
+  const MapMetrics m = ComputeMapMetrics(MapSnapshot{}, PerfectMap(), {}, EvalOptions{});
+  EXPECT_FALSE(m.has_truth);
+  EXPECT_EQ(m.mapped_walls, 4);
+  EXPECT_EQ(m.spurious, 0);
+  EXPECT_EQ(m.true_walls, 0);
+}
+
+}  // namespace
+}  // namespace relplane::eval
