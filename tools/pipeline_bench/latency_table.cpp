@@ -1,0 +1,54 @@
+#include "latency_table.hpp"
+
+#include <algorithm>
+
+#include "relplane/common/service_stats.hpp"
+
+namespace relplane::bench {
+
+void LatencyTable::Stamp(Stage stage, int64_t seq, int64_t micros) {
+  stamps_[static_cast<int>(stage)].emplace(seq, micros);
+}
+
+LatencySummary Summarise(const std::vector<double>& ms) {
+  LatencySummary s;
+  s.count = static_cast<int>(ms.size());
+  if (ms.empty()) return s;
+  s.p50_ms = Percentile(ms, 0.50);
+  s.p99_ms = Percentile(ms, 0.99);
+  s.max_ms = *std::max_element(ms.begin(), ms.end());
+  return s;
+}
+
+namespace {
+// Milliseconds from stage `from` to stage `to` for every seq seen at both.
+std::vector<double> Between(const std::map<int64_t, int64_t>& from,
+                            const std::map<int64_t, int64_t>& to) {
+  std::vector<double> ms;
+  for (const auto& [seq, t_from] : from) {
+    const auto it = to.find(seq);
+    if (it != to.end()) ms.push_back((it->second - t_from) / 1000.0);
+  }
+  return ms;
+}
+}  // namespace
+
+std::vector<double> LatencyTable::EndToEndMs() const {
+  return Between(stamps_[0], stamps_[2]);
+}
+
+RateResult LatencyTable::Summarise(double rate_hz, double publish_seconds) const {
+  RateResult r;
+  r.rate_hz = rate_hz;
+  r.frames = static_cast<int>(stamps_[0].size());
+  r.achieved_hz = publish_seconds > 0.0 ? r.frames / publish_seconds : 0.0;
+  r.segmenter = bench::Summarise(Between(stamps_[0], stamps_[1]));
+  r.mapper = bench::Summarise(Between(stamps_[1], stamps_[2]));
+  r.end_to_end = bench::Summarise(EndToEndMs());
+  r.dropped = r.frames - r.end_to_end.count;
+  const bool in_period = rate_hz <= 0.0 || r.end_to_end.p99_ms <= 1000.0 / rate_hz;
+  r.held = r.frames > 0 && r.dropped == 0 && in_period;
+  return r;
+}
+
+}  // namespace relplane::bench

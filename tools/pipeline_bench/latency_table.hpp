@@ -1,0 +1,51 @@
+#pragma once
+// Latency bookkeeping of the pipeline benchmark: stamps per seq at each stage on one host
+// monotonic clock, and the per-stage and end-to-end figures computed from them.
+// Transport-free, so it is unit-tested without a bus.
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace relplane::bench {
+
+// Where a frame was seen, in order along the pipeline.
+enum class Stage { kPublished = 0, kPlanes = 1, kPose = 2 };
+
+struct LatencySummary {
+  double p50_ms = 0.0;
+  double p99_ms = 0.0;
+  double max_ms = 0.0;
+  int count = 0;
+};
+
+// The result of one run at one sensor rate.
+struct RateResult {
+  double rate_hz = 0.0;       // requested rate; 0 = unpaced
+  double achieved_hz = 0.0;   // frames published / publishing time
+  int frames = 0;             // frames published
+  int dropped = 0;            // published frames with no POSE
+  LatencySummary segmenter;   // PLANES receive - SENSOR_POINTS publish
+  LatencySummary mapper;      // POSE receive - PLANES receive
+  LatencySummary end_to_end;  // POSE receive - SENSOR_POINTS publish
+  // Held: nothing dropped and p99 end to end within one frame period (unpaced: no drops).
+  bool held = false;
+};
+
+class LatencyTable {
+ public:
+  // Records the first time `seq` reached `stage` (repeats are ignored).
+  void Stamp(Stage stage, int64_t seq, int64_t micros);
+  // Summarises the run; `rate_hz` 0 means unpaced, `publish_seconds` the publishing time.
+  RateResult Summarise(double rate_hz, double publish_seconds) const;
+  // End-to-end latencies in milliseconds, in seq order (for the histogram).
+  std::vector<double> EndToEndMs() const;
+
+ private:
+  std::map<int64_t, int64_t> stamps_[3];
+};
+
+LatencySummary Summarise(const std::vector<double>& ms);
+
+}  // namespace relplane::bench

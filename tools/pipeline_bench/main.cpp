@@ -1,0 +1,256 @@
+// relplane-bench: the whole pipeline (segmenter + mapper as real processes on a private bus)
+// fed with simulated clouds at rising rates; latency per stage and end to end, matched by seq
+// on this host's monotonic clock (issue "Benchmark"). Clouds are made before each run so the
+// simulator's own cost is not in the figures.
+
+#include <poll.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <relplane/plane_set_t.hpp>
+#include <relplane/point_cloud_t.hpp>
+#include <relplane/pose_t.hpp>
+#include <relplane/status_t.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "bus_url.hpp"
+#include "child.hpp"
+#include "convert.hpp"
+#include "latency_table.hpp"
+#include "options_yaml.hpp"
+#include "relplane/common/bus.hpp"
+#include "relplane/common/cli.hpp"
+#include "relplane/common/service_runtime.hpp"
+#include "report.hpp"
+
+namespace fs = std::filesystem;
+using namespace relplane;
+using namespace relplane::bench;
+
+namespace {
+
+struct Flags {
+  std::string scenario;
+  std::string out;
+  std::vector<double> rates = {30, 60, 120, 240, 480, 960, 0};
+  std::vector<double> large_rates = {30, 60};
+  int frames = 300;
+  int large_frames = 90;
+  bool skip_large = false;
+  bool verbose = false;
+};
+
+std::string MachineName() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores";
+}
+
+// The clouds of the first `count` iterations of the scenario at `width` x `height`, encoded.
+std::vector<std::vector<uint8_t>> MakeClouds(sim::SimOptions options, int width, int height,
+                                             int count, int* points_per_frame) {
+  options.sensor.width = width;
+  options.sensor.height = height;
+  sim::Simulation simulation(options);
+  count = static_cast<int>(std::min<int64_t>(count, simulation.NumIterations()));
+  std::vector<std::vector<uint8_t>> clouds;
+  int64_t points = 0;
+  for (int k = 0; k < count; ++k) {
+    const point_cloud_t cloud = sim::ToPointCloud(simulation.Frame(k), k, simulation.Utime(k));
+    points += cloud.num_points;
+    std::vector<uint8_t> bytes(cloud.getEncodedSize());
+    cloud.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    clouds.push_back(std::move(bytes));
+  }
+  *points_per_frame = count > 0 ? static_cast<int>(points / count) : 0;
+  return clouds;
+}
+
+// Passes a child's output on (with --verbose) so its pipes never fill up.
+void Drain(launch::Child& child, bool verbose) {
+  for (int fd : {child.OutFd(), child.ErrFd()}) {
+    if (fd < 0) continue;
+    pollfd p{fd, POLLIN, 0};
+    if (poll(&p, 1, 0) <= 0) continue;
+    for (const std::string& line : child.ReadLines(fd)) {
+      if (verbose) std::cerr << "[" << child.Name() << "] " << line << "\n";
+    }
+  }
+}
+
+// One run: fresh services on a fresh bus, `clouds` published at `rate_hz` (0: unpaced).
+RateResult RunAtRate(const Flags& flags, const std::string& bin_dir,
+                     const std::vector<std::vector<uint8_t>>& clouds, double rate_hz,
+                     std::vector<double>* e2e_ms) {
+  const uint64_t seed = static_cast<uint64_t>(getpid()) * 7919u + static_cast<uint64_t>(MonotonicMicros());
+  const std::set<int> bound = [] {
+    const auto ports = launch::BoundUdpPorts(launch::ReadProcNetUdp());
+    return std::set<int>(ports.begin(), ports.end());
+  }();
+  const auto port = launch::ChoosePort(seed, [&](int p) { return bound.count(p) > 0; });
+  if (!port) throw std::runtime_error("no free udp port for a private bus");
+  const long buffer = std::min<long>(launch::ReceiveBufferMax(), 64L << 20);
+  const std::string url = launch::MakeUdpmUrl(*port, buffer);
+
+  std::vector<std::unique_ptr<launch::Child>> children;
+  for (const std::string name : {"segmenter", "mapper"}) {
+    const std::string exe = bin_dir + "/relplane-" + name;
+    if (!fs::exists(exe)) throw std::runtime_error(exe + " is not built");
+    children.push_back(std::make_unique<launch::Child>(launch::ChildSpec{
+        name, {exe, "--config", flags.scenario, "--lcm-url", url, "--log-level", "warn"}}));
+  }
+
+  auto bus = bus::OpenLcmBus(url);
+  LatencyTable table;
+  std::set<std::string> ready;
+  auto ignore = [](const std::string&) {};
+  bus::Subscribe<plane_set_t>(*bus, "PLANES", [&](const plane_set_t& m) {
+    table.Stamp(Stage::kPlanes, m.seq, MonotonicMicros());
+  }, ignore);
+  bus::Subscribe<pose_t>(*bus, "POSE", [&](const pose_t& m) {
+    table.Stamp(Stage::kPose, m.seq, MonotonicMicros());
+  }, ignore);
+  bus::Subscribe<status_t>(*bus, "STATUS", [&](const status_t& m) { ready.insert(m.service); },
+                           ignore);
+
+  // Services publish STATUS once a second from their loop: seeing both means both listen.
+  const int64_t ready_deadline = MonotonicMicros() + 5'000'000;
+  while (ready.size() < children.size() && MonotonicMicros() < ready_deadline) {
+    bus->Handle(50);
+    for (auto& c : children) Drain(*c, flags.verbose);
+  }
+  if (ready.size() < children.size()) std::cerr << "warning: services slow to report ready\n";
+
+  const int64_t start = MonotonicMicros();
+  for (size_t i = 0; i < clouds.size() && !StopRequested(); ++i) {
+    if (rate_hz > 0.0) {
+      const int64_t due = start + static_cast<int64_t>(i * 1e6 / rate_hz);
+      while (MonotonicMicros() < due) {
+        bus->Handle(static_cast<int>(std::max<int64_t>(1, (due - MonotonicMicros()) / 1000)));
+      }
+    } else {
+      while (bus->Handle(1) > 0) {
+      }
+    }
+    table.Stamp(Stage::kPublished, static_cast<int64_t>(i), MonotonicMicros());
+    bus->PublishRaw("SENSOR_POINTS", clouds[i].data(), clouds[i].size());
+    for (auto& c : children) Drain(*c, flags.verbose);
+  }
+  const double publish_s = (MonotonicMicros() - start) / 1e6;
+  // Let the pipeline drain: up to two seconds after the last POSE arrived.
+  int64_t quiet_since = MonotonicMicros();
+  size_t seen = 0;
+  while (MonotonicMicros() - quiet_since < 2'000'000) {
+    bus->Handle(20);
+    const size_t now_seen = table.EndToEndMs().size();
+    if (now_seen != seen) {
+      seen = now_seen;
+      quiet_since = MonotonicMicros();
+    }
+    if (seen == clouds.size()) break;
+  }
+  for (auto& c : children) c->SignalGroup(SIGINT);
+  for (auto& c : children) {
+    for (int i = 0; i < 100 && kill(c->Pid(), 0) == 0; ++i) {
+      Drain(*c, flags.verbose);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+  *e2e_ms = table.EndToEndMs();
+  return table.Summarise(rate_hz, publish_s);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Flags flags;
+  CLI::App app{"Pipeline latency and throughput against the 30 it/s budget: relplane-segmenter "
+               "and relplane-mapper fed with simulated clouds at rising rates.",
+               "relplane-bench"};
+  app.add_option("scenario", flags.scenario, "Scenario YAML (its sim section makes the clouds)")
+      ->check(CLI::ExistingFile)
+      ->required();
+  app.add_option("--out", flags.out, "Folder for bench.json and latency.svg")->required();
+  app.add_option("--rates", flags.rates, "Sensor rates for 160x120 clouds, Hz; 0 = unpaced")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_option("--large-rates", flags.large_rates, "Sensor rates for 640x480 clouds, Hz")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_option("--frames", flags.frames, "Frames per 160x120 run")->capture_default_str();
+  app.add_option("--large-frames", flags.large_frames, "Frames per 640x480 run")
+      ->capture_default_str();
+  app.add_flag("--skip-large", flags.skip_large, "Only 160x120 clouds");
+  app.add_flag("--verbose", flags.verbose, "Show the services' output");
+  if (const auto code = cli::Parse(app, argc, argv)) return *code;
+  InstallStopHandlers();
+
+  sim::SimOptions sim_options;
+  try {
+    sim_options = sim::LoadServiceOptions(flags.scenario).sim;
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return cli::kExitConfig;
+  }
+  const std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
+
+  BenchReport report;
+  report.scenario = flags.scenario;
+  report.machine = MachineName();
+  struct Size {
+    const char* name;
+    int width, height, frames;
+    std::vector<double> rates;
+  };
+  std::vector<Size> sizes = {{"160x120", 160, 120, flags.frames, flags.rates}};
+  if (!flags.skip_large) sizes.push_back({"640x480", 640, 480, flags.large_frames, flags.large_rates});
+  try {
+    for (const Size& size : sizes) {
+      ResolutionResult res;
+      res.name = size.name;
+      std::cerr << "making " << size.frames << " " << size.name << " clouds...\n";
+      const auto clouds = MakeClouds(sim_options, size.width, size.height, size.frames,
+                                     &res.points_per_frame);
+      for (double rate : size.rates) {
+        if (StopRequested()) break;
+        std::cerr << size.name << " at " << (rate > 0 ? std::to_string(int(rate)) + " Hz" : "max rate")
+                  << "...\n";
+        std::vector<double> e2e;
+        res.rates.push_back(RunAtRate(flags, bin_dir, clouds, rate, &e2e));
+        if (rate == 30.0) res.e2e_ms_at_30hz = e2e;
+      }
+      report.resolutions.push_back(std::move(res));
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "relplane-bench: " << e.what() << "\n";
+    return 1;
+  }
+
+  const Verdict verdict = Judge(report);
+  fs::create_directories(flags.out);
+  std::ofstream(flags.out + "/bench.json") << [&] {
+    std::ostringstream s;
+    WriteJson(report, verdict, s);
+    return s.str();
+  }();
+  std::ofstream svg(flags.out + "/latency.svg");
+  WriteHistogramSvg(report, svg);
+  PrintTable(report, verdict, std::cout);
+  std::cout << "wrote " << flags.out << "/bench.json and " << flags.out << "/latency.svg\n";
+  return verdict.pass ? 0 : 3;
+}
