@@ -17,7 +17,7 @@ LatencyTable HundredFrames(int64_t slow_seq = -1) {
     const int64_t pub = seq * 33333;
     t.Stamp(Stage::kPublished, seq, pub);
     t.Stamp(Stage::kPlanes, seq, pub + 2000);
-    if (seq != 7) t.Stamp(Stage::kPose, seq, pub + 3000 + (seq == slow_seq || seq == slow_seq + 1 ? 50000 : 0));
+    if (seq != 7) t.Stamp(Stage::kPose, seq, pub + 3000 + (slow_seq >= 0 && (seq == slow_seq || seq == slow_seq + 1) ? 50000 : 0));
   }
   return t;
 }
