@@ -1,0 +1,22 @@
+#pragma once
+// PLANES -> mapper input, mapper output -> POSE and MAP.
+
+#include <relplane/map_t.hpp>
+#include <relplane/plane_set_t.hpp>
+#include <relplane/pose_t.hpp>
+
+#include <string>
+#include <vector>
+
+#include "relplane/mapper/mapper.hpp"
+
+namespace relplane::mapper {
+
+// Converts a plane set. Returns false with a one-line reason when the set is unusable as a
+// whole (a plane with NaN or infinite numbers, a zero normal, a negative vertex count).
+bool FromPlaneSet(const plane_set_t& msg, std::vector<PlaneInput>* planes, std::string* reason);
+
+pose_t ToPoseMessage(const PoseEstimate& estimate, double z, int64_t utime, int64_t seq);
+map_t ToMapMessage(const MapSnapshot& map, int64_t utime, int64_t seq);
+
+}  // namespace relplane::mapper
