@@ -1,0 +1,60 @@
+#pragma once
+// Options of the EM plane segmenter. Defaults work for depth sensors with noise up to
+// sigma = 2 cm along the normal; the service fills them from the scenario's `segmenter` section.
+
+#include <cstdint>
+
+namespace relplane::segmenter {
+
+struct Options {
+  // --- Noise model (E-step) ---
+  // Each plane learns its own noise sigma (the weighted RMS of its support), kept in
+  // [sigma_min, sigma_max]; sigma_min keeps noise-free clouds well conditioned.
+  float sigma_min = 0.003f;     // metres
+  float sigma_max = 0.025f;     // metres
+  float sigma_initial = 0.01f;  // metres, a new proposal's sigma before EM learns it
+  // Depth sensors get noisier with range: a point at range r has variance
+  // sigma^2 + (range_noise * r^2)^2 along the normal. 0 for noise constant with range (the
+  // simulator); about 0.003 for a Kinect-type camera.
+  float range_noise = 0.0f;  // 1/m
+  // Density of the outlier class along a plane normal, 1/m: a point is an outlier when every
+  // plane's Gaussian density is below this (about 2.5 sigma away for sigma = 2 cm).
+  float outlier_density = 1.0f;
+
+  // --- EM on a subsample ---
+  // EM runs on a subsample of cloud_size / em_fraction points, clamped to
+  // [em_points_min, em_points_max] (a 640x480 cloud: 5000 points; 160x120: 2000).
+  int em_points_min = 2000;
+  int em_points_max = 5000;
+  int em_fraction = 60;
+  int em_iterations = 8;       // E/M iterations per round (fewer once converged)
+  int max_rounds = 6;          // rounds of EM + add/merge/prune
+  int max_planes = 24;         // mixture components at most
+  float converged_angle = 1e-4f;  // radians: a plane moving less has converged
+  float converged_offset = 1e-4f; // metres
+
+  // --- Proposals on unexplained points ---
+  int proposal_trials = 40;      // local neighbourhoods tried per proposal
+  int proposal_neighbours = 30;   // a trial fits the seed point's nearest unexplained points
+  float proposal_radius = 0.5f;   // metres, at most this far from the seed
+  float proposal_max_rms = 0.03f;  // metres, a neighbourhood flatter than this may seed a plane
+  int max_proposals_per_round = 4;
+
+  // --- Merge and prune ---
+  float merge_angle_deg = 3.0f;  // near-identical planes: normals within this angle ...
+  float merge_distance = 0.04f;  // ... and each centroid this close to the other plane
+  int min_em_points = 12;        // EM support (sum of responsibilities) below this is pruned
+
+  // --- Assignment of all points and extent ---
+  float inlier_sigmas = 3.0f;   // a point supports its nearest plane within this many sigma
+  int min_points = 150;         // pieces with fewer supporting points are dropped
+  float cell_size = 0.1f;       // metres, occupancy grid in the plane for connected pieces
+  int cell_reach = 2;           // cells: occupied cells this close are connected
+  int max_cells = 250000;       // the grid coarsens beyond this many cells per plane
+  float vertical_max_nz = 0.1f; // |normal.z| below this is a vertical plane: rectangle extent
+
+  bool keep_labels = false;  // fill Result::labels (pictures, tests)
+  uint32_t seed = 1;  // proposals' random choices; fixed per frame for determinism
+};
+
+}  // namespace relplane::segmenter

@@ -1,0 +1,42 @@
+#pragma once
+// The EM plane segmenter: one cloud in, its planes out (DESIGN.md: relplane-segmenter).
+
+#include <cstdint>
+#include <vector>
+
+#include "relplane/segmenter/cloud.hpp"
+#include "relplane/segmenter/em.hpp"
+#include "relplane/segmenter/options.hpp"
+
+namespace relplane::segmenter {
+
+struct Result {
+  std::vector<DetectedPlane> planes;  // decreasing support
+  int64_t input_points = 0;
+  int64_t dropped_nonfinite = 0;  // NaN/inf points left out
+  int64_t assigned_points = 0;    // points supporting some EM plane before the split
+  int em_planes = 0;              // mixture components after EM
+  int rounds = 0;                 // EM rounds run
+  // With options.keep_labels: for every input point, its index in `planes` or -1.
+  std::vector<int32_t> labels;
+};
+
+// Segments a stream of clouds. Each frame is seeded with the previous frame's planes (the
+// stream is continuous), so a steady scene needs fewer rounds and no new proposals.
+class Segmenter {
+ public:
+  explicit Segmenter(Options options = {});
+
+  Result Segment(const Cloud& cloud);
+  // Forgets the previous frame: the next cloud is segmented from proposals alone.
+  void Reset() { previous_.clear(); }
+  const Options& GetOptions() const { return options_; }
+  // The mixture's planes after the last frame (the seeds of the next one).
+  const std::vector<EmPlane>& MixturePlanes() const { return previous_; }
+
+ private:
+  Options options_;
+  std::vector<EmPlane> previous_;
+};
+
+}  // namespace relplane::segmenter

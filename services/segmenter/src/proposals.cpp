@@ -1,0 +1,133 @@
+#include "relplane/segmenter/proposals.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace relplane::segmenter {
+namespace {
+
+constexpr float kInlierSigmas = 2.5f;
+constexpr int kMinNeighbours = 8;
+constexpr size_t kMaxScoringPoints = 600;  // trials are scored on a strided subset
+// Smallest over middle eigenvalue of a neighbourhood's scatter: 30 neighbours on a flat patch
+// with sigma = 2 cm give about 0.04; a patch across a right-angled edge about 0.25.
+constexpr double kMaxFlatness = 0.1;
+
+struct Fit {
+  EmPlane plane;
+  float rms = 0.0f;
+  bool ok = false;
+};
+
+Fit FitIndices(const Cloud& pts, const std::vector<int>& idx) {
+  Fit fit;
+  if (idx.size() < 3) return fit;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int i : idx) mean += pts.Point(i).cast<double>();
+  mean /= static_cast<double>(idx.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (int i : idx) {
+    const Eigen::Vector3d q = pts.Point(i).cast<double>() - mean;
+    scatter.noalias() += q * q.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(scatter);
+  // A line-like neighbourhood has no defined normal; a thick one (across an edge) is no plane.
+  if (eig.eigenvalues()(1) < 1e-6 * static_cast<double>(idx.size())) return fit;
+  if (eig.eigenvalues()(0) > kMaxFlatness * eig.eigenvalues()(1)) return fit;
+  const Eigen::Vector3d n = eig.eigenvectors().col(0).normalized();
+  fit.plane.normal = n.cast<float>();
+  fit.plane.d = static_cast<float>(-n.dot(mean));
+  fit.plane.centroid = mean.cast<float>();
+  fit.rms = static_cast<float>(std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / idx.size()));
+  fit.ok = true;
+  return fit;
+}
+
+std::vector<int> Inliers(const Cloud& pts, const std::vector<int>& idx, const EmPlane& plane,
+                         float threshold, size_t stride = 1) {
+  std::vector<int> inliers;
+  for (size_t k = 0; k < idx.size(); k += stride) {
+    const int i = idx[k];
+    const float dist = plane.normal.dot(pts.Point(i)) + plane.d;
+    if (std::fabs(dist) < threshold) inliers.push_back(i);
+  }
+  return inliers;
+}
+
+// One proposal: the best flat neighbourhood's plane, refitted to its inliers.
+bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Options& options,
+                int min_support, std::mt19937* rng, EmPlane* out, std::vector<int>* support) {
+  const float radius2 = options.proposal_radius * options.proposal_radius;
+  const size_t stride = std::max<size_t>(1, candidates.size() / kMaxScoringPoints);
+  Fit best;
+  size_t best_score = 0;
+  std::vector<std::pair<float, int>> near;
+  for (int trial = 0; trial < options.proposal_trials; ++trial) {
+    // The seed's nearest candidates (within proposal_radius): a neighbourhood that adapts to
+    // the sampling density, so small faces close to the sensor still fit in one.
+    const Eigen::Vector3f seed = pts.Point(candidates[(*rng)() % candidates.size()]);
+    near.clear();
+    for (int i : candidates) {
+      const float d2 = (pts.Point(i) - seed).squaredNorm();
+      if (d2 < radius2) near.emplace_back(d2, i);
+    }
+    if (static_cast<int>(near.size()) < kMinNeighbours) continue;
+    const size_t keep = std::min(near.size(), static_cast<size_t>(options.proposal_neighbours));
+    std::nth_element(near.begin(), near.begin() + (keep - 1), near.end());
+    std::vector<int> neighbours(keep);
+    for (size_t m = 0; m < keep; ++m) neighbours[m] = near[m].second;
+    Fit fit = FitIndices(pts, neighbours);
+    if (!fit.ok || fit.rms > options.proposal_max_rms) continue;
+    const float sigma = std::clamp(fit.rms, options.sigma_min, options.sigma_max);
+    const size_t score = Inliers(pts, candidates, fit.plane, kInlierSigmas * sigma, stride).size();
+    if (score > best_score) {
+      best_score = score;
+      best = fit;
+      best.plane.sigma = sigma;
+    }
+  }
+  if (!best.ok) return false;
+  // Two refits on all inliers pull the local estimate onto the whole planar support.
+  EmPlane plane = best.plane;
+  std::vector<int> inliers;
+  for (int pass = 0; pass < 2; ++pass) {
+    inliers = Inliers(pts, candidates, plane, kInlierSigmas * plane.sigma);
+    const Fit refit = FitIndices(pts, inliers);
+    if (!refit.ok) return false;
+    plane.normal = refit.plane.normal;
+    plane.d = refit.plane.d;
+    plane.centroid = refit.plane.centroid;
+    plane.sigma = std::clamp(std::max(refit.rms, options.sigma_initial * 0.5f), options.sigma_min,
+                             options.sigma_max);
+  }
+  inliers = Inliers(pts, candidates, plane, kInlierSigmas * plane.sigma);
+  if (static_cast<int>(inliers.size()) < min_support) return false;
+  plane.support = static_cast<float>(inliers.size());
+  *out = plane;
+  *support = std::move(inliers);
+  return true;
+}
+
+}  // namespace
+
+std::vector<EmPlane> ProposePlanes(const Cloud& points, std::vector<int> candidates,
+                                   const Options& options, int min_support, std::mt19937* rng) {
+  std::vector<EmPlane> proposals;
+  while (static_cast<int>(proposals.size()) < options.max_proposals_per_round &&
+         static_cast<int>(candidates.size()) >= min_support) {
+    EmPlane plane;
+    std::vector<int> support;
+    if (!ProposeOne(points, candidates, options, min_support, rng, &plane, &support)) break;
+    proposals.push_back(plane);
+    // Both lists are in ascending index order: remove the support from the candidates.
+    std::vector<int> rest;
+    std::set_difference(candidates.begin(), candidates.end(), support.begin(), support.end(),
+                        std::back_inserter(rest));
+    candidates.swap(rest);
+  }
+  return proposals;
+}
+
+}  // namespace relplane::segmenter

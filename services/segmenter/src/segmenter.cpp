@@ -1,0 +1,148 @@
+#include "relplane/segmenter/segmenter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "relplane/segmenter/assign.hpp"
+#include "relplane/segmenter/extent.hpp"
+#include "relplane/segmenter/proposals.hpp"
+
+namespace relplane::segmenter {
+namespace {
+
+// Keeps the finite points only.
+Cloud FiniteOnly(const Cloud& in) {
+  Cloud out;
+  out.Reserve(in.size());
+  for (size_t i = 0; i < in.size(); ++i) {
+    if (std::isfinite(in.x[i]) && std::isfinite(in.y[i]) && std::isfinite(in.z[i])) {
+      out.Add(in.x[i], in.y[i], in.z[i]);
+    }
+  }
+  return out;
+}
+
+// Stratified subsample of at most `count` points: one point at a jittered position in each of
+// `count` equal strides, so no lattice aliases with the row layout of an organized cloud.
+Cloud Subsample(const Cloud& in, int count, uint32_t seed) {
+  if (static_cast<int>(in.size()) <= count) return in;
+  Cloud out;
+  out.Reserve(count);
+  const double stride = static_cast<double>(in.size()) / count;
+  uint32_t state = seed * 747796405u + 2891336453u;
+  for (int k = 0; k < count; ++k) {
+    state = state * 1664525u + 1013904223u;  // LCG: fixed sequence, cheap
+    const double jitter = (state >> 8) * (1.0 / 16777216.0);
+    const size_t i = std::min(in.size() - 1, static_cast<size_t>((k + jitter) * stride));
+    out.Add(in.x[i], in.y[i], in.z[i]);
+  }
+  return out;
+}
+
+std::vector<int> Unexplained(const Responsibilities& resp) {
+  std::vector<int> idx;
+  for (int i = 0; i < resp.num_points; ++i) {
+    if (resp.Outlier(i) > 0.5f) idx.push_back(i);
+  }
+  return idx;
+}
+
+// Merges near-identical planes (the one with less support goes) and prunes weak ones.
+// Returns true when any plane was removed.
+bool MergeAndPrune(const Options& options, float min_support, std::vector<EmPlane>* planes) {
+  std::vector<EmPlane>& p = *planes;
+  std::stable_sort(p.begin(), p.end(),
+                   [](const EmPlane& a, const EmPlane& b) { return a.support > b.support; });
+  const float cos_merge = std::cos(options.merge_angle_deg * static_cast<float>(M_PI) / 180.0f);
+  std::vector<bool> gone(p.size(), false);
+  for (size_t i = 0; i < p.size(); ++i) {
+    if (p[i].support < min_support) gone[i] = true;
+    if (gone[i]) continue;
+    for (size_t j = i + 1; j < p.size(); ++j) {
+      if (gone[j]) continue;
+      const bool parallel = std::fabs(p[i].normal.dot(p[j].normal)) > cos_merge;
+      const bool coplanar =
+          std::fabs(p[i].normal.dot(p[j].centroid) + p[i].d) < options.merge_distance &&
+          std::fabs(p[j].normal.dot(p[i].centroid) + p[j].d) < options.merge_distance;
+      if (parallel && coplanar) gone[j] = true;
+    }
+  }
+  std::vector<EmPlane> kept;
+  for (size_t i = 0; i < p.size(); ++i) {
+    if (!gone[i]) kept.push_back(p[i]);
+  }
+  const bool changed = kept.size() != p.size();
+  p.swap(kept);
+  return changed;
+}
+
+}  // namespace
+
+Segmenter::Segmenter(Options options) : options_(options) {}
+
+Result Segmenter::Segment(const Cloud& input) {
+  Result result;
+  result.input_points = static_cast<int64_t>(input.size());
+  const Cloud cloud = FiniteOnly(input);
+  result.dropped_nonfinite = result.input_points - static_cast<int64_t>(cloud.size());
+  if (cloud.empty()) {
+    previous_.clear();
+    return result;
+  }
+
+  // EM on a subsample; support thresholds scale with the sampling ratio.
+  const int em_points =
+      std::clamp(static_cast<int>(cloud.size() / std::max(1, options_.em_fraction)),
+                 options_.em_points_min, std::max(options_.em_points_min, options_.em_points_max));
+  const Cloud sample = Subsample(cloud, em_points, options_.seed);
+  const float ratio = static_cast<float>(sample.size()) / static_cast<float>(cloud.size());
+  const int min_support = std::max(options_.min_em_points,
+                                   static_cast<int>(std::ceil(options_.min_points * ratio * 0.5f)));
+  std::mt19937 rng(options_.seed);
+  std::vector<EmPlane> planes = previous_;
+  Responsibilities resp;
+  for (int round = 0; round < options_.max_rounds; ++round) {
+    result.rounds = round + 1;
+    RunEm(sample, options_, options_.em_iterations, &planes, &resp);
+    // Pruning and merging change the mixture: let EM settle the survivors before proposing.
+    if (MergeAndPrune(options_, static_cast<float>(min_support), &planes)) {
+      RunEm(sample, options_, options_.em_iterations, &planes, &resp);
+    }
+    const int room = options_.max_planes - static_cast<int>(planes.size());
+    if (room <= 0) break;
+    Options propose = options_;
+    propose.max_proposals_per_round = std::min(room, options_.max_proposals_per_round);
+    const auto proposals = ProposePlanes(sample, Unexplained(resp), propose, min_support, &rng);
+    if (proposals.empty()) break;
+    planes.insert(planes.end(), proposals.begin(), proposals.end());
+    if (round + 1 == options_.max_rounds) {  // out of rounds: still fit the last proposals
+      RunEm(sample, options_, options_.em_iterations, &planes, &resp);
+    }
+  }
+  MergeAndPrune(options_, static_cast<float>(min_support), &planes);
+  previous_ = planes;
+  result.em_planes = static_cast<int>(planes.size());
+
+  // One hard assignment pass over every point, then connected pieces and their extents.
+  std::vector<uint8_t> ambiguous;
+  const std::vector<int32_t> labels = AssignPoints(cloud, planes, options_, &ambiguous);
+  result.assigned_points =
+      std::count_if(labels.begin(), labels.end(), [](int32_t l) { return l >= 0; });
+  if (!options_.keep_labels) {
+    result.planes = DescribePieces(cloud, labels, ambiguous, planes, options_);
+    return result;
+  }
+  std::vector<int32_t> pieces;
+  result.planes = DescribePieces(cloud, labels, ambiguous, planes, options_, &pieces);
+  // Back to the input's indexing: the non-finite points were left out of `cloud`.
+  result.labels.assign(input.size(), -1);
+  for (size_t i = 0, k = 0; i < input.size(); ++i) {
+    if (std::isfinite(input.x[i]) && std::isfinite(input.y[i]) && std::isfinite(input.z[i])) {
+      result.labels[i] = pieces[k++];
+    }
+  }
+  return result;
+}
+
+}  // namespace relplane::segmenter
