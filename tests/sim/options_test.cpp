@@ -1,11 +1,13 @@
 // The `sim` section loader: defaults, the scenarios, and one-line errors naming file, line
 // and key.
 
-#include "options_yaml.hpp"
-
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
+
+#include "options_yaml.hpp"
 
 namespace relplane::sim {
 namespace {
@@ -94,6 +96,22 @@ TEST(SimOptions, ScenariosLoadAndRun) {
     // Short enough for tests: well under two minutes of simulated time.
     EXPECT_LT(sim.NumIterations(), 120 * 30);
     EXPECT_GT(sim.Frame(0).points.size(), 1000u);
+    // The sensor keeps at least 0.5 m from every wall all the way.
+    ASSERT_GT(sim.NumIterations(), 0);
+    double closest = 1e9;
+    for (int64_t k = 0; k < sim.NumIterations(); ++k) {
+      const geometry::Pose2 pose = sim.PlanarPose(k);
+      for (const Rect& r : sim.GetWorld().rects) {
+        // Walls at the sensor's height (a lintel above a door is passed beneath).
+        const double z0 = std::min(r.origin.z(), (r.origin + r.v).z());
+        const double z1 = std::max(r.origin.z(), (r.origin + r.v).z());
+        const double h = o.sim.sensor.mount_height;
+        if (std::abs(r.Normal().z()) > 0.1 || h < z0 || h > z1) continue;
+        const geometry::Segment2 footprint{r.origin.head<2>(), (r.origin + r.u).head<2>()};
+        closest = std::min(closest, footprint.DistanceTo(pose.Translation()));
+      }
+    }
+    EXPECT_GE(closest, 0.5);
   }
 }
 

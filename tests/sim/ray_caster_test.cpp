@@ -180,7 +180,8 @@ TEST(RayCaster, DoorFrameOccludes) {
   const Eigen::Vector3d origin(0.0, -1.5, 1.0);
   // Crosses x = 2 at y = 0.55 (inside the opening), then meets the jamb face y = 0.6.
   const Eigen::Vector3d direction = Eigen::Vector3d(2.0, 2.05, 0.0).normalized();
-  const double expected = (Eigen::Vector2d(2.0 + 0.05 / 1.025, 0.6) - Eigen::Vector2d(0, -1.5)).norm();
+  const double expected =
+      (Eigen::Vector2d(2.0 + 0.05 / 1.025, 0.6) - Eigen::Vector2d(0, -1.5)).norm();
 
   World with_frame;
   AddOffice(office, 2.5, &with_frame.rects);

@@ -89,12 +89,12 @@ TEST(Generators, HallwayLoopIsClosedAndStartsInTheCorridor) {
   ExpectNoLooseEnds(world);
   // The centre-line corners of the default 16 x 10 loop, 2 m wide.
   for (const Eigen::Vector2d& p : {Eigen::Vector2d(0, 0), Eigen::Vector2d(14, 0),
-                                  Eigen::Vector2d(14, 8), Eigen::Vector2d(0, 8)}) {
+                                   Eigen::Vector2d(14, 8), Eigen::Vector2d(0, 8)}) {
     ExpectClosedAround(world, p);
     // One metre from the nearest walls on the centre line.
     RayCaster caster(world);
     for (const Eigen::Vector3d& d : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
-                                    Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, -1, 0)}) {
+                                     Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(0, -1, 0)}) {
       const Hit h = caster.CastOneBruteForce(Eigen::Vector3d(p.x(), p.y(), 1.0), d, 100.0);
       EXPECT_GE(h.range, 1.0 - 1e-12);
     }

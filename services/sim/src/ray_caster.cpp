@@ -160,7 +160,8 @@ void RayCaster::CullForFrame(const Eigen::Vector3d& origin, double yaw, const Ra
   // Every ray of a grid whose directions all point forward (x > 0) hits only what lies in
   // front of the sensor.
   double min_forward = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector2d& c : grid.column_directions) min_forward = std::min(min_forward, c.x());
+  for (const Eigen::Vector2d& c : grid.column_directions)
+    min_forward = std::min(min_forward, c.x());
   const bool forward_only = min_forward > 0.0;
   const Eigen::Vector2d o2 = origin.head<2>();
   const Eigen::Vector2d forward(std::cos(yaw), std::sin(yaw));

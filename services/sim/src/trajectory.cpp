@@ -63,8 +63,7 @@ Trajectory::Trajectory(const TrajectoryOptions& options) : options_(options) {
     turn[i] = geometry::WrapAngle(Heading(dir[i]) - Heading(dir[i - 1]));
     if (options.turn != TurnMode::kSmooth) continue;
     const double tangent = radius * std::tan(0.5 * std::abs(turn[i]));
-    if (std::abs(turn[i]) < 3.0 && tangent <= 0.5 * length[i - 1] &&
-        tangent <= 0.5 * length[i]) {
+    if (std::abs(turn[i]) < 3.0 && tangent <= 0.5 * length[i - 1] && tangent <= 0.5 * length[i]) {
       cut[i] = tangent;
     }
   }
@@ -103,15 +102,16 @@ void Trajectory::AddLine(const Vector2d& a, const Vector2d& b) {
 
 void Trajectory::AddTurn(const Vector2d& at, double yaw0, double sweep) {
   Piece p{Kind::kTurn, duration_, std::abs(sweep) / options_.turn_rate, at, at, yaw0, sweep,
-          0.0, 0.0};
+          0.0,         0.0};
   pieces_.push_back(p);
   duration_ += p.duration;
 }
 
 void Trajectory::AddArc(const Vector2d& centre, double radius, double angle0, double yaw0,
                         double sweep) {
-  Piece p{Kind::kArc, duration_, radius * std::abs(sweep) / options_.speed, centre, centre,
-          yaw0, sweep, radius, angle0};
+  Piece p{Kind::kArc, duration_, radius * std::abs(sweep) / options_.speed,
+          centre,     centre,    yaw0,
+          sweep,      radius,    angle0};
   pieces_.push_back(p);
   duration_ += p.duration;
 }

@@ -22,9 +22,9 @@ struct TrajectoryOptions {
   double speed = 1.0;      // m/s along straight parts and arcs
   double turn_rate = 0.8;  // rad/s, never exceeded
   TurnMode turn = TurnMode::kInPlace;
-  int laps = 1;              // times round the waypoints; more than one needs closed
-  bool closed = false;       // each lap ends back at the first waypoint
-  bool drive_back = false;   // after the laps, turn round and retrace the whole path
+  int laps = 1;             // times round the waypoints; more than one needs closed
+  bool closed = false;      // each lap ends back at the first waypoint
+  bool drive_back = false;  // after the laps, turn round and retrace the whole path
 };
 
 class Trajectory {
@@ -46,12 +46,12 @@ class Trajectory {
     Kind kind;
     double start_time;
     double duration;
-    Eigen::Vector2d p0;   // line start, arc centre or turn position
-    Eigen::Vector2d p1;   // line end
-    double yaw0;          // heading at the start
-    double sweep;         // signed heading change (arc and turn)
-    double radius;        // arc
-    double angle0;        // arc: polar angle of the start point about the centre
+    Eigen::Vector2d p0;  // line start, arc centre or turn position
+    Eigen::Vector2d p1;  // line end
+    double yaw0;         // heading at the start
+    double sweep;        // signed heading change (arc and turn)
+    double radius;       // arc
+    double angle0;       // arc: polar angle of the start point about the centre
   };
 
   void AddLine(const Eigen::Vector2d& a, const Eigen::Vector2d& b);

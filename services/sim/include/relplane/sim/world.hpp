@@ -27,8 +27,7 @@ struct Rect {
     return {origin, origin + u, origin + u + v, origin + v};
   }
   // A vertical wall over the floor-plan segment a -> b, from z = base to z = base + height.
-  static Rect Wall(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double base,
-                   double height);
+  static Rect Wall(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double base, double height);
 };
 
 // A wall given by its floor-plan segment; height < 0 means the world's height.
@@ -42,9 +41,9 @@ struct WallSpec {
 using GeneratorSpec = std::variant<StraightHallwayParams, HallwayLoopParams, OfficeParams>;
 
 struct WorldOptions {
-  double height = 2.5;   // wall height and ceiling height, metres
-  bool floor = true;     // a floor rectangle at z = 0 under the walls' bounding box
-  bool ceiling = true;   // a ceiling rectangle at z = height over the same box
+  double height = 2.5;  // wall height and ceiling height, metres
+  bool floor = true;    // a floor rectangle at z = 0 under the walls' bounding box
+  bool ceiling = true;  // a ceiling rectangle at z = height over the same box
   std::vector<GeneratorSpec> generators = {StraightHallwayParams{}};
   std::vector<WallSpec> walls;
   std::vector<Rect> rectangles;
