@@ -55,12 +55,14 @@ std::string RenderErrorSvg(const TrajectoryMetrics& trajectory, double width_px)
   std::string out = svg::Header(width, height);
   out += svg::Text(kLeft, 24, "Position error against truth (x-y), matched by seq", "start",
                    "font-size=\"15\" font-weight=\"bold\"");
-  for (double e = 0.0; e <= axes.e1 + 1e-9; e += e_step) {
+  for (long k = 0; k * e_step <= axes.e1 + 1e-9; ++k) {
+    const double e = k * e_step;
     out += svg::Line(kLeft, axes.Y(e), kLeft + axes.width, axes.Y(e),
                      "stroke=\"#eeeeee\" stroke-width=\"1\"");
     out += svg::Text(kLeft - 6, axes.Y(e) + 4, svg::Format("%g", e), "end");
   }
-  for (double t = std::ceil(axes.t0 / t_step) * t_step; t <= axes.t1 + 1e-9; t += t_step) {
+  for (long k = std::lround(std::ceil(axes.t0 / t_step)); k * t_step <= axes.t1 + 1e-9; ++k) {
+    const double t = k * t_step;
     out += svg::Line(axes.X(t), kTop + kPlotHeight, axes.X(t), kTop + kPlotHeight + 5,
                      "stroke=\"black\" stroke-width=\"1\"");
     out += svg::Text(axes.X(t), kTop + kPlotHeight + 18, svg::Format("%g", t), "middle");

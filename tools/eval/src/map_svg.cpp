@@ -196,13 +196,21 @@ std::string RenderMapSvg(const MapPicture& pic) {
   // A light grid at the scale bar's step gives the eye the units everywhere.
   const double step = NiceStep(span.x(), 10.0);
   std::string grid;
-  for (double x = std::ceil(b.lo.x() / step) * step; x <= b.hi.x(); x += step) {
+  const char* tick_style = "fill=\"#999999\" font-size=\"10\"";
+  // Integer multiples of the step, so labels print as round numbers.
+  for (long k = std::lround(std::ceil(b.lo.x() / step)); k * step <= b.hi.x(); ++k) {
+    const double x = k * step;
     grid += svg::Line(view.X(x), view.Y(b.lo.y()), view.X(x), view.Y(b.hi.y()),
                       "stroke=\"#eeeeee\" stroke-width=\"1\"");
+    grid += svg::Text(view.X(x), view.Y(b.lo.y()) - 3, svg::Format("%g", x + 0.0), "middle",
+                      tick_style);
   }
-  for (double y = std::ceil(b.lo.y() / step) * step; y <= b.hi.y(); y += step) {
+  for (long k = std::lround(std::ceil(b.lo.y() / step)); k * step <= b.hi.y(); ++k) {
+    const double y = k * step;
     grid += svg::Line(view.X(b.lo.x()), view.Y(y), view.X(b.hi.x()), view.Y(y),
                       "stroke=\"#eeeeee\" stroke-width=\"1\"");
+    grid += svg::Text(view.X(b.lo.x()) + 3, view.Y(y) - 3, svg::Format("%g", y + 0.0), "start",
+                      tick_style);
   }
   out += "<g id=\"grid\">\n" + grid + "</g>\n";
   out += "<g id=\"true-walls\">\n" +

@@ -67,7 +67,7 @@ std::string FormatSummary(const RunMetrics& m) {
     }
   }
   for (const ExpectationResult& e : m.expectations) {
-    s += Format("  %-14s %-26s %10s %s %-8g %s\n", "expect", e.key.c_str(), Num(e.value).c_str(),
+    s += Format("  %-14s %-26s %10s %s %-8g %s\n", "expect", e.key.c_str(), Num(e.value, "%.4g").c_str(),
                 e.is_max ? "<=" : ">=", e.limit, e.pass ? "PASS" : "FAIL");
   }
   return s;
