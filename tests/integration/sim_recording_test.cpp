@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <lcm/eventlog.h>
+#include <sys/stat.h>
 
 #include <Eigen/Geometry>
 #include <iostream>
@@ -27,6 +28,7 @@ struct Recording {
   std::vector<map_t> worlds;
   int cloud_events = 0;
   int truth_events = 0;
+  int other_events = 0;
 };
 
 template <class M>
@@ -55,6 +57,8 @@ Recording ReadLog(const std::string& path) {
       ++r.truth_events;
     } else if (channel == "SIM_WORLD") {
       r.worlds.push_back(Decode<map_t>(*event));
+    } else {
+      ++r.other_events;
     }
     lcm_eventlog_free_event(event);
   }
@@ -167,6 +171,51 @@ TEST(SimRecording, OneCloudAndTruthPerIterationOnTheTrueWalls) {
   EXPECT_LT(worst, 6 * kSigma) << "a point far off every true rectangle";
   EXPECT_LE(std::sqrt(sum_squares / points), kSigma);
   EXPECT_GT(static_cast<double>(on_walls) / points, 0.3) << "the walls are barely seen";
+}
+
+// ./relplane replay: lcm-logplayer feeds a recorded run's simulator channels, and only those,
+// to fresh services (fakes here) on a new bus; the new recording holds every one of them.
+TEST(SimRecording, ReplayFeedsTheRecordedSimulatorChannelsToFreshServices) {
+  const std::string scenario = SourceDir() + "/scenarios/straight_hallway.yaml";
+  TempDir dir;
+  const std::string live = dir.Path() + "/live";
+  std::string output;
+  ASSERT_EQ(
+      RunLauncher({scenario, "--out", live, "--lcm-url", TestBusUrl(47116), "--set",
+                   "launch.services=[sim]", "--set", "launch.rate_hz=60", "--iterations", "20"},
+                  120, &output),
+      0)
+      << output;
+
+  const std::string bin = dir.Path() + "/bin";
+  ASSERT_EQ(mkdir(bin.c_str(), 0755), 0);
+  for (const char* name : {"segmenter", "mapper", "logger"}) {
+    WriteFakeService(bin, name,
+                     "echo \"$@\" > " + dir.Path() + "/" + name + ".args\nexec sleep 60");
+  }
+  const std::string replay = dir.Path() + "/replay";
+  ASSERT_EQ(RunLauncher({"--replay", live + "/bus.lcmlog", "--bin-dir", bin, "--out", replay,
+                         "--speed", "3", "--lcm-url", TestBusUrl(47117)},
+                        120, &output),
+            0)
+      << output;
+  EXPECT_NE(output.find("scenario straight_hallway-replay: segmenter, mapper, logger, logplayer"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(ReadText(dir.Path() + "/logger.args").find("--out " + replay), std::string::npos);
+  // The services got the recorded run's scenario.
+  EXPECT_EQ(ReadText(replay + "/scenario.yaml"), ReadText(live + "/scenario.yaml"));
+
+  const Recording original = ReadLog(live + "/bus.lcmlog");
+  const Recording replayed = ReadLog(replay + "/bus.lcmlog");
+  EXPECT_EQ(replayed.cloud_events, 20);
+  EXPECT_EQ(replayed.truth_events, 20);
+  EXPECT_EQ(replayed.worlds.size(), original.worlds.size());
+  EXPECT_EQ(replayed.other_events, 0) << "STATUS and the like must not be replayed";
+  ASSERT_EQ(replayed.clouds.size(), original.clouds.size());
+  for (const auto& [seq, cloud] : original.clouds) {
+    EXPECT_EQ(replayed.clouds.at(seq).x, cloud.x) << seq;
+  }
 }
 
 }  // namespace

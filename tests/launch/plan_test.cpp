@@ -17,6 +17,22 @@ TEST(StopOrderTest, SourceFirstThenPipelineFromItsHead) {
   EXPECT_TRUE(StopOrder({}).empty());
 }
 
+TEST(StopOrderTest, AReplaySourceStopsFirstToo) {
+  EXPECT_EQ(StopOrder({"segmenter", "mapper", "logger", kReplaySource}, kReplaySource),
+            (std::vector<std::string>{kReplaySource, "segmenter", "mapper", "logger"}));
+  EXPECT_EQ(StartOrder({kReplaySource, "segmenter", "logger"}, kReplaySource),
+            (std::vector<std::string>{"segmenter", "logger", kReplaySource}));
+}
+
+TEST(ReplayCommandTest, PlaysOnlyTheSimulatorChannelsOnTheRunBus) {
+  const ChildSpec player =
+      ReplayCommand("/usr/bin/lcm-logplayer", "udpm://g:5", "/r/bus.lcmlog", 2);
+  EXPECT_EQ(player.name, kReplaySource);
+  EXPECT_EQ(player.argv, (std::vector<std::string>{"/usr/bin/lcm-logplayer", "--speed=2",
+                                                   "--regexp=^(SENSOR_POINTS|SIM_TRUTH|SIM_WORLD)$",
+                                                   "--lcm-url=udpm://g:5", "/r/bus.lcmlog"}));
+}
+
 TEST(StartOrderTest, SourceLastSoSubscribersHearItsFirstMessage) {
   EXPECT_EQ(StartOrder({"sim", "segmenter", "mapper", "logger"}),
             (std::vector<std::string>{"segmenter", "mapper", "logger", "sim"}));

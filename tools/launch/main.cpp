@@ -31,6 +31,8 @@ struct Flags {
   std::vector<std::string> sets;
   std::string lcm_url;
   std::string bin_dir;
+  std::string replay;  // a recorded bus.lcmlog to feed to fresh services
+  double speed = 1.0;
   long iterations = -1;
   bool check = false;
   bool allow_missing = false;
@@ -63,6 +65,13 @@ std::string OwnDirectory() {
   if (n <= 0) return ".";
   std::string path(buffer, static_cast<size_t>(n));
   return path.substr(0, path.find_last_of('/'));
+}
+
+bool SameFile(const std::string& a, const std::string& b) {
+  struct stat sa {
+  }, sb{};
+  return stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
 }
 
 std::string FindInPath(const std::string& program) {
@@ -130,7 +139,20 @@ void CheckConfig(const std::vector<std::pair<std::string, std::string>>& service
   }
 }
 
-int Launch(const Flags& flags) {
+int Launch(Flags flags) {
+  const bool replay = !flags.replay.empty();
+  if (replay) {
+    if (!std::ifstream(flags.replay)) throw SetupError(flags.replay + ": cannot open the file");
+    if (flags.iterations >= 0) throw SetupError("--iterations does not apply to --replay");
+    // By default the scenario the recorded run got, from its run folder.
+    if (flags.scenario.empty()) {
+      const size_t slash = flags.replay.find_last_of('/');
+      flags.scenario =
+          (slash == std::string::npos ? std::string(".") : flags.replay.substr(0, slash)) +
+          "/scenario.yaml";
+    }
+  }
+  if (flags.scenario.empty()) throw SetupError("a SCENARIO file is required (see --help)");
   const YAML::Node original = launch::LoadScenario(flags.scenario);
   const std::string original_text = ReadFile(flags.scenario);
   launch::ReadLaunchOptions(original_text, flags.scenario);
@@ -143,13 +165,15 @@ int Launch(const Flags& flags) {
   const std::string resolved_text = flags.sets.empty() ? original_text : launch::ToYaml(resolved);
   const launch::LaunchOptions options =
       launch::ReadLaunchOptions(resolved_text, flags.scenario + " (with --set)");
-  const std::string name = launch::ScenarioName(resolved, flags.scenario);
+  const std::string name =
+      launch::ScenarioName(resolved, flags.scenario) + (replay ? "-replay" : "");
+  const std::string source = replay ? launch::kReplaySource : launch::kSourceService;
 
   // Services to start, and every service whose section the scenario holds, check the file.
   const std::string bin_dir = flags.bin_dir.empty() ? OwnDirectory() : flags.bin_dir;
   std::vector<std::string> services;
   std::vector<std::pair<std::string, std::string>> checkers;
-  for (const std::string& service : options.services) {
+  for (const std::string& service : replay ? launch::kReplayServices : options.services) {
     const std::string exe = bin_dir + "/relplane-" + service;
     if (IsExecutable(exe)) {
       services.push_back(service);
@@ -182,6 +206,10 @@ int Launch(const Flags& flags) {
   }
   const std::string lcm_logger = FindInPath("lcm-logger");
   if (lcm_logger.empty()) throw SetupError("lcm-logger not found in PATH (Debian: liblcm-bin)");
+  const std::string lcm_logplayer = replay ? FindInPath("lcm-logplayer") : "";
+  if (replay && lcm_logplayer.empty()) {
+    throw SetupError("lcm-logplayer not found in PATH (Debian: liblcm-bin)");
+  }
   if (flags.check) {
     launch::Say(flags.scenario + ": OK");
     return launch::kExitOk;
@@ -189,15 +217,22 @@ int Launch(const Flags& flags) {
 
   const std::string run_dir = ChooseRunDir(flags, name);
   MakeDirectories(run_dir);
+  if (replay && SameFile(run_dir + "/bus.lcmlog", flags.replay)) {
+    throw SetupError(run_dir + ": the replay would record over the log it plays; choose --out");
+  }
   const std::string scenario_file = run_dir + "/scenario.yaml";
   WriteFile(scenario_file, resolved_text);
   const std::string url = ChooseUrl(flags);
   setenv("LCM_DEFAULT_URL", url.c_str(), 1);  // for the children and anything they start
 
   std::vector<launch::ChildSpec> children;
-  for (const std::string& service : launch::StartOrder(services)) {
+  for (const std::string& service : launch::StartOrder(services, source)) {
     children.push_back(launch::ServiceCommand(service, bin_dir, scenario_file, url, run_dir,
                                               options, flags.iterations));
+  }
+  if (replay) {
+    children.push_back(launch::ReplayCommand(lcm_logplayer, url, flags.replay, flags.speed));
+    services.push_back(source);
   }
   std::string listed;
   for (const std::string& service : services) listed += (listed.empty() ? "" : ", ") + service;
@@ -210,6 +245,7 @@ int Launch(const Flags& flags) {
   supervision.grace_s = options.grace_s;
   supervision.drain_s = options.drain_s;
   supervision.bus_port = launch::PortOfUrl(url).value_or(-1);
+  supervision.source = source;
   const int code =
       launch::Supervise(launch::RecorderCommand(lcm_logger, url, run_dir), children, supervision);
   const char* verdict = code == launch::kExitOk            ? "done"
@@ -225,7 +261,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Runs a scenario: its services on a private LCM bus, recorded by lcm-logger.",
                "relplane-launch"};
   Flags flags;
-  app.add_option("scenario", flags.scenario, "Scenario YAML file")->required();
+  app.add_option("scenario", flags.scenario,
+                 "Scenario YAML file (with --replay: default the log's RUN/scenario.yaml)");
   app.add_option("--out", flags.out,
                  "Run folder (default: runs/NAME-UTCTIME, or under "
                  "$RELPLANE_RUNS_DIR)");
@@ -234,6 +271,11 @@ int main(int argc, char** argv) {
                  "lists as key[N]); repeatable")
       ->take_all();
   app.add_option("--lcm-url", flags.lcm_url, "Bus URL (default: a udpm port unique to the run)");
+  app.add_option("--replay", flags.replay,
+                 "Feed this recorded bus.lcmlog's SENSOR_POINTS, SIM_TRUTH and SIM_WORLD to "
+                 "fresh segmenter, mapper and logger with lcm-logplayer, instead of the simulator");
+  app.add_option("--speed", flags.speed, "Replay speed factor (1: as recorded)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--iterations", flags.iterations,
                  "Stop the simulator after N iterations (passed to relplane-sim)")
       ->check(CLI::NonNegativeNumber);

@@ -38,10 +38,18 @@ ChildSpec RecorderCommand(const std::string& lcm_logger, const std::string& url,
   return {"lcm-logger", {lcm_logger, "--lcm-url=" + url, "--force", run_dir + "/bus.lcmlog"}};
 }
 
-std::vector<std::string> StopOrder(const std::vector<std::string>& services) {
+ChildSpec ReplayCommand(const std::string& lcm_logplayer, const std::string& url,
+                        const std::string& log, double speed) {
+  return {kReplaySource,
+          {lcm_logplayer, "--speed=" + FormatNumber(speed), "--regexp=" + kReplayChannels,
+           "--lcm-url=" + url, log}};
+}
+
+std::vector<std::string> StopOrder(const std::vector<std::string>& services,
+                                   const std::string& source) {
   std::vector<std::string> order;
   for (const std::string& name :
-       {kSourceService, std::string("segmenter"), std::string("mapper"), std::string("logger")}) {
+       {source, std::string("segmenter"), std::string("mapper"), std::string("logger")}) {
     if (std::find(services.begin(), services.end(), name) != services.end()) order.push_back(name);
   }
   for (const std::string& name : services) {
@@ -50,13 +58,14 @@ std::vector<std::string> StopOrder(const std::vector<std::string>& services) {
   return order;
 }
 
-std::vector<std::string> StartOrder(const std::vector<std::string>& services) {
+std::vector<std::string> StartOrder(const std::vector<std::string>& services,
+                                    const std::string& source) {
   std::vector<std::string> order;
   for (const std::string& name : services) {
-    if (name != kSourceService) order.push_back(name);
+    if (name != source) order.push_back(name);
   }
-  if (std::find(services.begin(), services.end(), kSourceService) != services.end()) {
-    order.push_back(kSourceService);
+  if (std::find(services.begin(), services.end(), source) != services.end()) {
+    order.push_back(source);
   }
   return order;
 }

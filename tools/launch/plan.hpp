@@ -10,8 +10,14 @@
 
 namespace relplane::launch {
 
-// The service whose normal end (exit 0) ends the run.
+// The service whose normal end (exit 0) ends a live run.
 inline const std::string kSourceService = "sim";
+// The source of a replay: lcm-logplayer feeding a recorded log.
+inline const std::string kReplaySource = "logplayer";
+// The services a replay feeds (the simulator's part comes from the log).
+inline const std::vector<std::string> kReplayServices = {"segmenter", "mapper", "logger"};
+// The channels a replay feeds: the simulator's. The services' own outputs are made afresh.
+inline const std::string kReplayChannels = "^(SENSOR_POINTS|SIM_TRUTH|SIM_WORLD)$";
 
 // One process of the run: a name for its output prefix and its command line.
 struct ChildSpec {
@@ -31,14 +37,20 @@ ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
 ChildSpec RecorderCommand(const std::string& lcm_logger, const std::string& url,
                           const std::string& run_dir);
 
+// lcm-logplayer playing `log` onto `url` at `speed` (1: as recorded), the simulator's channels.
+ChildSpec ReplayCommand(const std::string& lcm_logplayer, const std::string& url,
+                        const std::string& log, double speed);
+
 // Services in the order they are stopped: the source first (so no new data enters), then the
 // pipeline from its head (segmenter, mapper, logger) so each stage sees its input's end, then
 // anything else in the order listed. The recorder is stopped after all of these.
-std::vector<std::string> StopOrder(const std::vector<std::string>& services);
+std::vector<std::string> StopOrder(const std::vector<std::string>& services,
+                                   const std::string& source = kSourceService);
 
 // Services in the order they are started: every other service first, so their subscriptions
 // exist before the source publishes, the source last.
-std::vector<std::string> StartOrder(const std::vector<std::string>& services);
+std::vector<std::string> StartOrder(const std::vector<std::string>& services,
+                                    const std::string& source = kSourceService);
 
 // ROOT/NAME-YYYYmmddTHHMMSSZ (UTC).
 std::string DefaultRunDir(const std::string& root, const std::string& name, std::time_t now);

@@ -168,7 +168,7 @@ void Run::OnExit(Child& child) {
     }
     return;
   }
-  if (child.Name() == kSourceService && !stopping_ && !draining_ && WIFEXITED(status) &&
+  if (child.Name() == options_.source && !stopping_ && !draining_ && WIFEXITED(status) &&
       WEXITSTATUS(status) == 0) {
     Say(child.Name() + " finished; letting the pipeline drain for " +
         std::to_string(options_.drain_s).substr(0, 4) + " s");
@@ -283,7 +283,7 @@ void Run::StopAll() {
   for (auto& child : children_) {
     if (child->Name() != "lcm-logger") names.push_back(child->Name());
   }
-  for (const std::string& name : StopOrder(names)) {
+  for (const std::string& name : StopOrder(names, options_.source)) {
     if (Child* child = Find(name)) StopChild(*child);
   }
   if (Child* recorder = Find("lcm-logger"); recorder && recorder->Running()) {
@@ -320,13 +320,13 @@ int Run::Execute(const ChildSpec& recorder, const std::vector<ChildSpec>& servic
   if (Start(recorder)) WaitForSubscribers(++subscribers);
   for (const ChildSpec& spec : services) {
     if (stopping_) break;
-    if (spec.name == kSourceService) {
+    if (spec.name == options_.source) {
       WaitForSubscribers(subscribers);
       if (stopping_) break;
     }
-    if (Start(spec) && spec.name != kSourceService) ++subscribers;
+    if (Start(spec) && spec.name != options_.source) ++subscribers;
   }
-  if (!stopping_ && (services.empty() || services.back().name != kSourceService)) {
+  if (!stopping_ && (services.empty() || services.back().name != options_.source)) {
     WaitForSubscribers(subscribers);
   }
 

@@ -15,6 +15,7 @@ struct SupervisorOptions {
   double recorder_drain_s = 0.5;  // before stopping the recorder (it drops its queue on SIGINT)
   double ready_timeout_s = 3.0;   // longest wait for the subscribers before the source starts
   int bus_port = -1;              // udpm port of the run, to see subscribers bind; -1: unknown
+  std::string source = kSourceService;  // the child whose exit 0 ends the run (started last)
 };
 
 // Exit codes of a run.
@@ -22,7 +23,7 @@ constexpr int kExitOk = 0;
 constexpr int kExitFailed = 1;         // a child failed, died unexpectedly or would not start
 constexpr int kExitInterrupted = 130;  // SIGINT/SIGTERM/SIGHUP to the launcher
 
-// Runs `recorder` then `services` (already in start order; the one named kSourceService last)
+// Runs `recorder` then `services` (already in start order; options.source last)
 // and supervises them to the end. Returns one of the exit codes above. No child outlives it.
 int Supervise(const ChildSpec& recorder, const std::vector<ChildSpec>& services,
               const SupervisorOptions& options);
