@@ -136,6 +136,28 @@ TEST(LaunchSupervision, SimFinishingEndsTheRunCleanly) {
   ExpectNoProcessesOn(url, 2.0);
 }
 
+// The logger writes its files when stopped: failing then fails the run.
+TEST(LaunchSupervision, FailureWhileStoppingFailsTheRun) {
+  TempDir dir;
+  const std::string url = TestBusUrl(47118);
+  WriteFakeService(dir.Path(), "sim", "sleep 0.3\nexit 0");
+  WriteFakeService(dir.Path(), "logger",
+                   "trap 'echo cannot write map.json >&2; exit 1' INT\n"
+                   "while true; do sleep 0.1; done");
+  std::string output;
+  EXPECT_EQ(RunLauncher({WriteScenario(dir.Path(), "[sim, logger]"), "--bin-dir", dir.Path(),
+                         "--out", dir.Path() + "/run", "--lcm-url", url},
+                        30, &output),
+            1)
+      << output;
+  EXPECT_TRUE(std::regex_search(output, std::regex("\\[logger\\] +cannot write map.json")))
+      << output;
+  EXPECT_NE(output.find("error: logger exited with code 1 while stopping"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("stopped lcm-logger"), std::string::npos) << output;
+  ExpectNoProcessesOn(url, 2.0);
+}
+
 TEST(LaunchSupervision, InterruptStopsEverythingWithoutOrphans) {
   TempDir dir;
   const std::string url = TestBusUrl(47113);

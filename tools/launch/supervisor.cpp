@@ -155,16 +155,17 @@ void Run::OnExit(Child& child) {
   const bool asked = std::find(stop_requested_.begin(), stop_requested_.end(), child.Name()) !=
                      stop_requested_.end();
   if (asked) {
-    // Dying of the signal we sent is a clean stop; an error code while stopping is a failure
-    // (the logger writes its files then).
-    const bool clean = (WIFEXITED(status) && WEXITSTATUS(status) == 0) ||
-                       (WIFSIGNALED(status) && WTERMSIG(status) != SIGKILL);
+    // Dying of the SIGINT/SIGTERM we sent is a clean stop; an error code or a crash while
+    // stopping is a failure (the logger writes its files then).
+    const bool clean =
+        (WIFEXITED(status) && WEXITSTATUS(status) == 0) ||
+        (WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM));
     if (clean) {
       Say("stopped " + child.Name());
-    } else if (WIFSIGNALED(status)) {
+    } else if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) {
       Say("warning: " + child.Name() + " had to be killed");
     } else {
-      Fail(child.Name() + " " + DescribeExit(status) + " while stopping");
+      Fail("error: " + child.Name() + " " + DescribeExit(status) + " while stopping");
     }
     return;
   }
