@@ -6,11 +6,14 @@
 #include <limits>
 
 #include "relplane/segmenter/hull.hpp"
+#include "relplane/segmenter/merge_pieces.hpp"
 
 namespace relplane::segmenter {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+// The final fit of a piece uses its points within this many RMS of the first fit.
+constexpr float kTrimSigmas = 2.5f;
 
 // In-plane axes: for a vertical plane u is horizontal and v points up, so the extent rectangle
 // follows the wall's vertical edges; otherwise any orthonormal pair.
@@ -42,6 +45,12 @@ struct Piece {
   bool kept = false;
   bool vertical = false;
   DetectedPlane out;
+  Eigen::Matrix3d scatter;  // about the centroid
+  // Second pass: moments of the points close to the first fit, about its centroid.
+  int trimmed_count = 0;
+  Eigen::Vector3f trimmed_centroid = Eigen::Vector3f::Constant(kInf);
+  Eigen::Vector3d trimmed_sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d trimmed_sum_sq = Eigen::Matrix3d::Zero();
   Eigen::Vector3f u, v;
   float a_min = kInf, a_max = -kInf, b_min = kInf, b_max = -kInf;
 };
@@ -99,11 +108,28 @@ void Refit(const Eigen::Vector3f& origin, Piece* piece) {
   piece->out.centroid = centroid.cast<float>();
   piece->out.num_points = piece->count;
   piece->out.rms = static_cast<float>(std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / n));
+  piece->scatter = scatter;
+}
+
+// Refits the piece to its trimmed moments; the extent's axes (u, v) and centroid frame stay,
+// the vertices are lifted onto the new plane afterwards.
+void TrimmedRefit(Piece* p) {
+  if (p->trimmed_count < 3) return;
+  Piece trimmed;
+  trimmed.count = p->trimmed_count;
+  trimmed.sum = p->trimmed_sum;
+  trimmed.sum_sq = p->trimmed_sum_sq;
+  Refit(p->out.centroid, &trimmed);
+  p->out.normal = trimmed.out.normal;
+  p->out.d = trimmed.out.d;
+  p->out.rms = trimmed.out.rms;
+  p->scatter = trimmed.scatter;
+  p->trimmed_centroid = trimmed.out.centroid;
 }
 
 void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
                    const std::vector<uint8_t>& ambiguous, const EmPlane& plane,
-                   const Options& options, std::vector<DetectedPlane>* out,
+                   const Options& options, std::vector<PieceStats>* out,
                    std::vector<int32_t>* piece_labels) {
   // Grid in the EM plane's coordinates, origin at its centroid.
   const Eigen::Vector3f origin = plane.centroid;
@@ -167,7 +193,8 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
     p.vertical = std::fabs(p.out.normal.z()) < options.vertical_max_nz;
     PlaneAxes(p.out.normal, p.vertical, &p.u, &p.v);
   }
-  // Second pass: extents along each piece's own refitted axes.
+  // Second pass: extents along each piece's own refitted axes, and the moments of the points
+  // near the fit, so the final fit ignores what the piece caught from a neighbouring surface.
   for (size_t k = 0; k < idx.size(); ++k) {
     Cell& c = cells[cell_of_point[k]];
     const int piece = piece_of[cell_of_point[k]];
@@ -176,6 +203,13 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
     if (piece_labels) (*piece_labels)[idx[k]] = piece;  // local index, made global below
     const Eigen::Vector3f q = cloud.Point(idx[k]) - p.out.centroid;
     const Eigen::Vector2f ab(p.u.dot(q), p.v.dot(q));
+    const float dist = p.out.normal.dot(q);
+    if (std::fabs(dist) <= kTrimSigmas * std::max(p.out.rms, options.sigma_min)) {
+      const Eigen::Vector3d qd = q.cast<double>();
+      ++p.trimmed_count;
+      p.trimmed_sum += qd;
+      p.trimmed_sum_sq.noalias() += qd * qd.transpose();
+    }
     if (p.vertical) {
       p.a_min = std::min(p.a_min, ab.x());
       p.a_max = std::max(p.a_max, ab.x());
@@ -202,6 +236,7 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
     Piece& p = pieces[i];
     if (!p.kept) continue;
     global[i] = static_cast<int32_t>(out->size());
+    TrimmedRefit(&p);
     auto lift = [&p](float pa, float pb) { return Eigen::Vector3f(p.out.centroid + pa * p.u + pb * p.v); };
     if (p.vertical) {
       p.out.vertices = {lift(p.a_min, p.b_min), lift(p.a_max, p.b_min), lift(p.a_max, p.b_max),
@@ -211,7 +246,9 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
         p.out.vertices.push_back(lift(corner.x(), corner.y()));
       }
     }
-    out->push_back(std::move(p.out));
+    for (auto& v : p.out.vertices) v -= (p.out.normal.dot(v) + p.out.d) * p.out.normal;
+    if (p.trimmed_count >= 3) p.out.centroid = p.trimmed_centroid;
+    out->push_back(PieceStats{std::move(p.out), p.scatter, p.vertical});
   }
   if (piece_labels) {
     for (int i : idx) {
@@ -234,11 +271,15 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
   for (size_t i = 0; i < labels.size(); ++i) {
     if (labels[i] >= 0) members[labels[i]].push_back(static_cast<int>(i));
   }
-  std::vector<DetectedPlane> result;
+  std::vector<PieceStats> described;
   for (size_t j = 0; j < planes.size(); ++j) {
     if (static_cast<int>(members[j].size()) < options.min_points) continue;
-    DescribePlane(cloud, members[j], ambiguous, planes[j], options, &result, piece_labels);
+    DescribePlane(cloud, members[j], ambiguous, planes[j], options, &described, piece_labels);
   }
+  std::vector<int32_t> merged_into;
+  std::vector<PieceStats> merged = MergeTouchingPieces(std::move(described), options, &merged_into);
+  std::vector<DetectedPlane> result;
+  for (auto& m : merged) result.push_back(std::move(m.plane));
   std::vector<int32_t> order(result.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int32_t>(i);
   std::stable_sort(order.begin(), order.end(), [&result](int32_t x, int32_t y) {
@@ -252,7 +293,7 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
   }
   if (piece_labels) {
     for (int32_t& l : *piece_labels) {
-      if (l >= 0) l = rank[l];
+      if (l >= 0) l = rank[merged_into[l]];
     }
   }
   return sorted;

@@ -43,6 +43,10 @@ struct Options {
   // --- Merge and prune ---
   float merge_angle_deg = 3.0f;  // near-identical planes: normals within this angle ...
   float merge_distance = 0.04f;  // ... and each centroid this close to the other plane
+  // Touching pieces are one surface when their normals are within this angle (and both
+  // centroids within merge_distance): lets a depth camera's few-degree bend at the image edge
+  // stay part of the floor.
+  float piece_merge_angle_deg = 6.0f;
   int min_em_points = 12;        // EM support (sum of responsibilities) below this is pruned
 
   // --- Assignment of all points and extent ---
