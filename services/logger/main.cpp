@@ -1,11 +1,11 @@
 // relplane-logger: subscribes POSE, MAP, SIM_TRUTH, SIM_WORLD, STATUS (and PLANES for stage
 // latency) and keeps the run folder current: every file is rewritten atomically at most every
 // flush_period_s when something changed, and once more with a summary table at shutdown.
+#include <spdlog/spdlog.h>
+
 #include <ctime>
 #include <filesystem>
 #include <iostream>
-
-#include <spdlog/spdlog.h>
 
 #include "convert.hpp"
 #include "options_yaml.hpp"

@@ -36,8 +36,7 @@ TEST(EvalConfig, UnknownOrBadKeysAreOneLineErrors) {
   EXPECT_THROW(ParseEvalConfig("logger:\n  flush_period_s: -1\n", "s.yaml"), config::ConfigError);
   EXPECT_THROW(ParseEvalConfig("logger:\n  match: {angle_max: 3}\n", "s.yaml"),
                config::ConfigError);
-  EXPECT_THROW(ParseEvalConfig("expect:\n  duplicates_max: many\n", "s.yaml"),
-               config::ConfigError);
+  EXPECT_THROW(ParseEvalConfig("expect:\n  duplicates_max: many\n", "s.yaml"), config::ConfigError);
 }
 
 TEST(Expectations, MaxAndMinLimitsAndMissingData) {
@@ -46,10 +45,11 @@ TEST(Expectations, MaxAndMinLimitsAndMissingData) {
   m.trajectory.ate_rmse_m = 0.04;
   m.map.has_truth = true;
   m.map.duplicates = 1;
-  const std::vector<ExpectationResult> r = CheckExpectations(
-      {{"ate_rmse_max_m", 0.05}, {"duplicates_max", 0}, {"iterations_min", 100},
-       {"latency_p99_max_ms", 30}},
-      m);
+  const std::vector<ExpectationResult> r = CheckExpectations({{"ate_rmse_max_m", 0.05},
+                                                              {"duplicates_max", 0},
+                                                              {"iterations_min", 100},
+                                                              {"latency_p99_max_ms", 30}},
+                                                             m);
   ASSERT_EQ(r.size(), 4u);
   EXPECT_TRUE(r[0].pass);
   EXPECT_FALSE(r[1].pass);

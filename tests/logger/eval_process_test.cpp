@@ -68,8 +68,8 @@ TEST(EvalProcess, ScoresARecordedLogLikeTheLogger) {
   // The scenario beside the log supplies expect: unless --config says otherwise.
   WriteFileForTest(dir + "/scenario.yaml", "name: t\nexpect: {duplicates_max: 0}\n");
   std::string out, err;
-  ASSERT_EQ(RunProcess({RELPLANE_EVAL_PATH, dir + "/bus.lcmlog", "--out", dir + "/scored"}, 30.0, &out,
-                &err),
+  ASSERT_EQ(RunProcess({RELPLANE_EVAL_PATH, dir + "/bus.lcmlog", "--out", dir + "/scored"}, 30.0,
+                       &out, &err),
             0)
       << err;
   const RunFolder folder = CheckRunFolder(dir + "/scored");
@@ -88,15 +88,15 @@ TEST(EvalProcess, ScoresARecordedLogLikeTheLogger) {
 TEST(EvalProcess, MissingOrUnreadableLogIsOneLineAndExitTwo) {
   const std::string dir = FreshDir("bad");
   std::string out, err;
-  EXPECT_EQ(RunProcess({RELPLANE_EVAL_PATH, dir + "/nothing.lcmlog", "--out", dir + "/o"}, 10.0, &out,
-                &err),
+  EXPECT_EQ(RunProcess({RELPLANE_EVAL_PATH, dir + "/nothing.lcmlog", "--out", dir + "/o"}, 10.0,
+                       &out, &err),
             2);
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   EXPECT_NE(err.find("nothing.lcmlog"), std::string::npos) << err;
 
   WriteFileForTest(dir + "/garbage.lcmlog", "this is not an LCM log at all\n");
-  EXPECT_EQ(RunProcess({RELPLANE_EVAL_PATH, dir + "/garbage.lcmlog", "--out", dir + "/o"}, 10.0, &out,
-                &err),
+  EXPECT_EQ(RunProcess({RELPLANE_EVAL_PATH, dir + "/garbage.lcmlog", "--out", dir + "/o"}, 10.0,
+                       &out, &err),
             2);
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }

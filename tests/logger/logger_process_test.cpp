@@ -109,13 +109,15 @@ TEST(LoggerProcess, CheckConfigRefusesAnUnknownExpectKeyInOneLine) {
   const std::string scenario = FreshDir("check") + "-scenario.yaml";
   WriteFileForTest(scenario, "name: t\nexpect:\n  ate_rsme_max_m: 0.05\n");
   std::string out, err;
-  EXPECT_EQ(RunProcess({RELPLANE_LOGGER_PATH, "--config", scenario, "--check-config"}, 10.0, &out, &err),
-            2);
+  EXPECT_EQ(
+      RunProcess({RELPLANE_LOGGER_PATH, "--config", scenario, "--check-config"}, 10.0, &out, &err),
+      2);
   EXPECT_NE(err.find(":3: unknown key 'expect.ate_rsme_max_m'"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   WriteFileForTest(scenario, "name: t\nsim: {x: 1}\nlogger: {flush_period_s: 0.5}\n");
-  EXPECT_EQ(RunProcess({RELPLANE_LOGGER_PATH, "--config", scenario, "--check-config"}, 10.0, &out, &err),
-            0)
+  EXPECT_EQ(
+      RunProcess({RELPLANE_LOGGER_PATH, "--config", scenario, "--check-config"}, 10.0, &out, &err),
+      0)
       << err;
 }
 

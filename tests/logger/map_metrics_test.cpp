@@ -1,8 +1,9 @@
 // Map metrics against hand-made worlds and maps with known answers.
+#include "relplane/eval/map_metrics.hpp"
+
 #include <gtest/gtest.h>
 
 #include "fixtures.hpp"
-#include "relplane/eval/map_metrics.hpp"
 
 namespace relplane::eval {
 namespace {
@@ -67,9 +68,9 @@ TEST(MapMetrics, ThreeCopiesOfOneWallAreTwoDuplicates) {
 
 TEST(MapMetrics, PlanesMatchingNoWallAreSpurious) {
   MapSnapshot map = PerfectMap();
-  map.planes.push_back(Wall(30, {1, -1}, {2, 1}));         // diagonal across the room
-  map.planes.push_back(Wall(31, {-1, -1.4}, {5, -1.4}));   // parallel, 0.6 m off the south wall
-  map.planes.push_back(Wall(32, {7, -2}, {9, -2}));        // on the south wall's line, past its end
+  map.planes.push_back(Wall(30, {1, -1}, {2, 1}));        // diagonal across the room
+  map.planes.push_back(Wall(31, {-1, -1.4}, {5, -1.4}));  // parallel, 0.6 m off the south wall
+  map.planes.push_back(Wall(32, {7, -2}, {9, -2}));       // on the south wall's line, past its end
   const MapMetrics m = Score(map);
   EXPECT_EQ(m.spurious, 3);
   EXPECT_EQ(m.spurious_ids, (std::vector<int64_t>{30, 31, 32}));
@@ -90,8 +91,8 @@ TEST(MapMetrics, SeenButUnmappedWallIsMissed) {
 
 TEST(MapMetrics, WallsOutOfSightAreNotExpected) {
   MapSnapshot world = Room();
-  world.planes.push_back(Wall(5, {-1, -3}, {5, -3}));    // behind the south wall: occluded
-  world.planes.push_back(Wall(6, {40, -2}, {40, 2}));    // far beyond the sensor's range
+  world.planes.push_back(Wall(5, {-1, -3}, {5, -3}));  // behind the south wall: occluded
+  world.planes.push_back(Wall(6, {40, -2}, {40, 2}));  // far beyond the sensor's range
   const MapMetrics m = Score(PerfectMap(), world);
   EXPECT_EQ(m.true_walls, 6);
   EXPECT_EQ(m.expected_walls, 4);

@@ -5,7 +5,6 @@
 #include <relplane/plane_set_t.hpp>
 #include <relplane/pose_t.hpp>
 #include <relplane/status_t.hpp>
-
 #include <string>
 #include <vector>
 
@@ -46,8 +45,8 @@ inline relplane::map_t MapMessage(const eval::MapSnapshot& map) {
     }
     plane.d = static_cast<float>(p.d);
     for (const Eigen::Vector3d& v : p.vertices) {
-      plane.vertices.push_back({static_cast<float>(v.x()), static_cast<float>(v.y()),
-                                static_cast<float>(v.z())});
+      plane.vertices.push_back(
+          {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())});
     }
     plane.num_vertices = static_cast<int32_t>(plane.vertices.size());
     plane.num_points = static_cast<int32_t>(p.observations);

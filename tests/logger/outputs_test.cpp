@@ -152,7 +152,8 @@ TEST(Outputs, XmlCheckerRejectsBrokenDocuments) {
   EXPECT_FALSE(testing::CheckXml("<svg a=1/>", &error));
   EXPECT_FALSE(testing::CheckXml("<svg>&bogus;</svg>", &error));
   EXPECT_FALSE(testing::CheckXml("<a/><b/>", &error));
-  EXPECT_TRUE(testing::CheckXml("<?xml version=\"1.0\"?>\n<a x=\"&lt;\"><!-- c --><b/>t</a>\n", &error))
+  EXPECT_TRUE(
+      testing::CheckXml("<?xml version=\"1.0\"?>\n<a x=\"&lt;\"><!-- c --><b/>t</a>\n", &error))
       << error;
 }
 

@@ -57,9 +57,9 @@ int Process::Wait(double timeout_s) {
 }
 
 int RunProcess(const std::vector<std::string>& argv, double timeout_s, std::string* out,
-        std::string* err) {
-  const std::string base = std::filesystem::temp_directory_path().string() + "/relplane-run-" +
-                           std::to_string(getpid());
+               std::string* err) {
+  const std::string base =
+      std::filesystem::temp_directory_path().string() + "/relplane-run-" + std::to_string(getpid());
   int code;
   {
     Process p(argv, base + ".out", base + ".err");

@@ -27,7 +27,7 @@ class Process {
 
 // Runs argv to its end (at most `timeout_s`); stdout and stderr into *out and *err.
 int RunProcess(const std::vector<std::string>& argv, double timeout_s, std::string* out,
-        std::string* err);
+               std::string* err);
 
 // Writes `text` to `path` (test set-up; throws when it cannot).
 void WriteFileForTest(const std::string& path, const std::string& text);

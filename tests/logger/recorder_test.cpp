@@ -21,7 +21,8 @@ class RecorderTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::path(::testing::TempDir()) /
-           (std::string("recorder-") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+           (std::string("recorder-") +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -46,7 +47,8 @@ TEST_F(RecorderTest, EncodedMessagesBecomeACompleteRunFolder) {
   RunRecorder recorder(dir_.string(), EvalOptions{}, {{"ate_rmse_max_m", 0.05}, {"dropped_max", 1}},
                        "test");
   const std::vector<PoseSample> truth = testing::LoopInRoom();
-  EXPECT_EQ(Feed(recorder, "SIM_WORLD", testing::MapMessage(testing::Room()), 0), FeedResult::kUsed);
+  EXPECT_EQ(Feed(recorder, "SIM_WORLD", testing::MapMessage(testing::Room()), 0),
+            FeedResult::kUsed);
   for (const PoseSample& t : truth) {
     const int64_t at = 1000 + t.seq * 33000;
     PoseSample e = t;

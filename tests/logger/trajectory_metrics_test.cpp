@@ -1,10 +1,11 @@
 // Trajectory metrics against hand-made trajectories with known answers.
+#include "relplane/eval/trajectory_metrics.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "fixtures.hpp"
-#include "relplane/eval/trajectory_metrics.hpp"
 
 namespace relplane::eval {
 namespace {
@@ -16,8 +17,8 @@ using testing::Pose;
 std::vector<PoseSample> Moved(const std::vector<PoseSample>& truth, const geometry::Pose2& t) {
   std::vector<PoseSample> out;
   for (const PoseSample& p : truth) {
-    const geometry::Pose2 moved = t * geometry::Pose2{p.position.x(), p.position.y(),
-                                                      geometry::YawOf(p.orientation)};
+    const geometry::Pose2 moved =
+        t * geometry::Pose2{p.position.x(), p.position.y(), geometry::YawOf(p.orientation)};
     out.push_back(Pose(p.seq, moved.x, moved.y, moved.yaw));
   }
   return out;

@@ -1,10 +1,11 @@
 // TUM trajectory text: round trip and malformed input.
+#include "relplane/eval/tum.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "fixtures.hpp"
-#include "relplane/eval/tum.hpp"
 
 namespace relplane::eval {
 namespace {
@@ -36,8 +37,8 @@ TEST(Tum, LinesAreTimeThenPositionThenQuaternionXyzw) {
   p.utime = 1500000;
   const std::string line = FormatTum({p});
   double v[8];
-  ASSERT_EQ(std::sscanf(line.c_str(), "%lf %lf %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2],
-                        &v[3], &v[4], &v[5], &v[6], &v[7]),
+  ASSERT_EQ(std::sscanf(line.c_str(), "%lf %lf %lf %lf %lf %lf %lf %lf", &v[0], &v[1], &v[2], &v[3],
+                        &v[4], &v[5], &v[6], &v[7]),
             8);
   EXPECT_DOUBLE_EQ(v[0], 1.5);
   EXPECT_DOUBLE_EQ(v[1], 1.0);

@@ -14,7 +14,8 @@ bool NameChar(char c) {
 
 class Checker {
  public:
-  Checker(const std::string& text, std::map<std::string, int>* counts) : s_(text), counts_(counts) {}
+  Checker(const std::string& text, std::map<std::string, int>* counts)
+      : s_(text), counts_(counts) {}
 
   void Run() {
     if (s_.compare(0, 5, "<?xml") == 0) {

@@ -1,8 +1,7 @@
 #include "convert.hpp"
 
-#include <relplane/plane_set_t.hpp>
-
 #include <cmath>
+#include <relplane/plane_set_t.hpp>
 
 #include "relplane/common/bus.hpp"
 

@@ -3,11 +3,10 @@
 // relplane-logger (live) and relplane-eval (from a log) both feed their recorder through
 // FeedEncoded, so a replayed run is scored exactly like a live one.
 
+#include <cstdint>
 #include <relplane/map_t.hpp>
 #include <relplane/pose_t.hpp>
 #include <relplane/status_t.hpp>
-
-#include <cstdint>
 #include <string>
 #include <vector>
 

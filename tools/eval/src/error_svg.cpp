@@ -81,7 +81,8 @@ std::string RenderErrorSvg(const TrajectoryMetrics& trajectory, double width_px)
                      "no pose matched to truth yet", "middle", "fill=\"#888888\"");
   }
   out += Series(errors, axes, false, "stroke=\"#d62828\" stroke-width=\"1.5\"");
-  out += Series(errors, axes, true, "stroke=\"#1f5fbf\" stroke-width=\"1.2\" stroke-dasharray=\"5 3\"");
+  out += Series(errors, axes, true,
+                "stroke=\"#1f5fbf\" stroke-width=\"1.2\" stroke-dasharray=\"5 3\"");
 
   const double lx = kLeft + axes.width - 260;
   out += svg::Line(lx, kTop + 14, lx + 26, kTop + 14, "stroke=\"#d62828\" stroke-width=\"1.5\"");

@@ -39,8 +39,8 @@ double ExpectationValue(const std::string& key, const RunMetrics& m) {
   if (key == "rpe_max_m_per_m") return m.trajectory.rpe_translation_per_m;
   if (key == "lost_max") return count(m.run.lost);
   // Map counts mean nothing without the true world.
-  const bool map_count = key == "duplicates_max" || key == "spurious_max" ||
-                         key == "missed_max" || key == "walls_mapped_min";
+  const bool map_count = key == "duplicates_max" || key == "spurious_max" || key == "missed_max" ||
+                         key == "walls_mapped_min";
   if (map_count && !m.map.has_truth) return kNaN;
   if (key == "walls_mapped_min") return count(m.map.walls_mapped);
   if (key == "walls_mapped_fraction_min") {

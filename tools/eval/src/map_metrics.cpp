@@ -124,8 +124,8 @@ bool WallSeenFrom(const WallLine& wall, const std::vector<WallLine>& walls,
   const double length = wall.segment.Length();
   // Stay a little inside the ends so a wall meeting this one at a corner does not hide it.
   const double inset = std::min(0.05, 0.25 * length);
-  const int samples = std::max(1, static_cast<int>(std::ceil((length - 2 * inset) /
-                                                             std::max(options.sample_step_m, 0.01))));
+  const int samples = std::max(
+      1, static_cast<int>(std::ceil((length - 2 * inset) / std::max(options.sample_step_m, 0.01))));
   const Eigen::Vector2d dir = wall.segment.Direction();
   const double half_fov = 0.5 * options.hfov_deg * M_PI / 180.0;
   for (const PoseSample& pose : poses) {
@@ -133,8 +133,7 @@ bool WallSeenFrom(const WallLine& wall, const std::vector<WallLine>& walls,
     const double yaw = geometry::YawOf(pose.orientation);
     if (wall.segment.DistanceTo(p) > options.range_m) continue;
     for (int k = 0; k <= samples; ++k) {
-      const Eigen::Vector2d q =
-          wall.segment.a + dir * (inset + (length - 2 * inset) * k / samples);
+      const Eigen::Vector2d q = wall.segment.a + dir * (inset + (length - 2 * inset) * k / samples);
       const Eigen::Vector2d ray = q - p;
       if (ray.norm() > options.range_m) continue;
       if (std::abs(geometry::WrapAngle(std::atan2(ray.y(), ray.x()) - yaw)) > half_fov) continue;

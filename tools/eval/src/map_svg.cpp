@@ -52,9 +52,9 @@ std::string Walls(const std::vector<WallLine>& walls, const View& view, const ch
                   const char* what) {
   std::string out;
   for (const WallLine& w : walls) {
-    out += svg::Format("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" %s>", view.X(w.segment.a.x()),
-                       view.Y(w.segment.a.y()), view.X(w.segment.b.x()), view.Y(w.segment.b.y()),
-                       style);
+    out += svg::Format("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" %s>",
+                       view.X(w.segment.a.x()), view.Y(w.segment.a.y()), view.X(w.segment.b.x()),
+                       view.Y(w.segment.b.y()), style);
     out += svg::Format("<title>%s %lld</title></line>\n", what, static_cast<long long>(w.id));
   }
   return out;
@@ -81,10 +81,9 @@ std::string Groups(const MapSnapshot& map, const View& view) {
     for (const auto& e : ends) c += e;
     c /= static_cast<double>(ends.size());
     for (const auto& e : ends) {
-      lines += svg::Line(view.X(e.x()), view.Y(e.y()), view.X(c.x()), view.Y(c.y()),
-                         svg::Format("stroke=\"%s\" stroke-width=\"1\" stroke-dasharray=\"4 3\"",
-                                     stroke)
-                             .c_str());
+      lines += svg::Line(
+          view.X(e.x()), view.Y(e.y()), view.X(c.x()), view.Y(c.y()),
+          svg::Format("stroke=\"%s\" stroke-width=\"1\" stroke-dasharray=\"4 3\"", stroke).c_str());
     }
     marks += svg::Format("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"3\" fill=\"%s\"/>\n", view.X(c.x()),
                          view.Y(c.y()), stroke);
@@ -134,12 +133,11 @@ std::string Caption(const RunMetrics& m) {
                         m.trajectory.ate_aligned_rmse_m);
   }
   if (m.map.has_truth) {
-    text += svg::Format("   walls mapped %lld/%lld, duplicates %lld, spurious %lld, missed %lld",
-                        static_cast<long long>(m.map.walls_mapped),
-                        static_cast<long long>(m.map.expected_walls),
-                        static_cast<long long>(m.map.duplicates),
-                        static_cast<long long>(m.map.spurious),
-                        static_cast<long long>(m.map.missed));
+    text += svg::Format(
+        "   walls mapped %lld/%lld, duplicates %lld, spurious %lld, missed %lld",
+        static_cast<long long>(m.map.walls_mapped), static_cast<long long>(m.map.expected_walls),
+        static_cast<long long>(m.map.duplicates), static_cast<long long>(m.map.spurious),
+        static_cast<long long>(m.map.missed));
   }
   return text;
 }
@@ -219,15 +217,16 @@ std::string RenderMapSvg(const MapPicture& pic) {
          "</g>\n";
   out += "<g id=\"groups\">\n" + Groups(map, view) + "</g>\n";
   out += "<g id=\"mapped-walls\">\n" +
-         Walls(mapped_walls, view, "stroke=\"#1f5fbf\" stroke-width=\"2.5\" stroke-linecap=\"round\"",
-               "mapped plane") +
+         Walls(mapped_walls, view,
+               "stroke=\"#1f5fbf\" stroke-width=\"2.5\" stroke-linecap=\"round\"", "mapped plane") +
          "</g>\n";
   out += "<g id=\"trajectories\">\n";
   out += Polyline(truth, view, "stroke=\"#2a9d3a\" stroke-width=\"1.5\"");
   out += Polyline(estimate, view, "stroke=\"#d62828\" stroke-width=\"1.5\"");
   if (!truth.empty()) {
-    out += svg::Format("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"#2a9d3a\"><title>start</title></circle>\n",
-                       view.X(truth.front().position.x()), view.Y(truth.front().position.y()));
+    out += svg::Format(
+        "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"#2a9d3a\"><title>start</title></circle>\n",
+        view.X(truth.front().position.x()), view.Y(truth.front().position.y()));
   }
   out += "</g>\n";
 

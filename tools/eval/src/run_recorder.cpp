@@ -20,8 +20,8 @@ std::vector<PoseSample> Values(const std::map<int64_t, PoseSample>& by_seq) {
 
 }  // namespace
 
-RunRecorder::RunRecorder(std::string out_dir, EvalOptions options,
-                         std::vector<Expectation> expect, std::string source)
+RunRecorder::RunRecorder(std::string out_dir, EvalOptions options, std::vector<Expectation> expect,
+                         std::string source)
     : out_dir_(std::move(out_dir)),
       options_(options),
       expect_(std::move(expect)),
@@ -71,11 +71,20 @@ RunMetrics RunRecorder::Metrics() const {
   r.map_updates = map_updates_;
   for (const PoseSample& p : estimate) {
     switch (static_cast<PoseStatus>(p.status)) {
-      case PoseStatus::kTracking: ++r.tracking; break;
-      case PoseStatus::kMotionModel: ++r.motion_model; break;
-      case PoseStatus::kInitializing: ++r.initializing; break;
-      case PoseStatus::kLost: ++r.lost; break;
-      default: break;
+      case PoseStatus::kTracking:
+        ++r.tracking;
+        break;
+      case PoseStatus::kMotionModel:
+        ++r.motion_model;
+        break;
+      case PoseStatus::kInitializing:
+        ++r.initializing;
+        break;
+      case PoseStatus::kLost:
+        ++r.lost;
+        break;
+      default:
+        break;
     }
   }
   if (estimate.size() >= 2) {

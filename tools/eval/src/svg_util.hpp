@@ -10,11 +10,20 @@ inline std::string Escape(const std::string& text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -38,8 +47,8 @@ inline std::string Header(double width, double height) {
                 height);
 }
 
-inline std::string Text(double x, double y, const std::string& text,
-                        const char* anchor = "start", const char* extra = "") {
+inline std::string Text(double x, double y, const std::string& text, const char* anchor = "start",
+                        const char* extra = "") {
   return Format("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\" %s>", x, y, anchor, extra) +
          Escape(text) + "</text>\n";
 }

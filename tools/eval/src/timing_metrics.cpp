@@ -34,7 +34,9 @@ void TimingRecorder::Status(const StatusSample& status) {
 
 TimingMetrics TimingRecorder::Compute() const {
   std::vector<double> end_to_end, segmenter, mapper;
-  const auto span_ms = [](int64_t from, int64_t to) { return 1e-3 * static_cast<double>(to - from); };
+  const auto span_ms = [](int64_t from, int64_t to) {
+    return 1e-3 * static_cast<double>(to - from);
+  };
   for (const auto& [seq, t] : arrivals_) {
     if (t[kCloud] >= 0 && t[kPose] >= 0) end_to_end.push_back(span_ms(t[kCloud], t[kPose]));
     if (t[kCloud] >= 0 && t[kPlanes] >= 0) segmenter.push_back(span_ms(t[kCloud], t[kPlanes]));

@@ -30,10 +30,10 @@ std::vector<WallLine> WallsOf(const std::vector<PlaneRecord>& planes,
 struct WallMatch {
   int64_t true_id = 0;
   double length_m = 0.0;
-  bool expected = false;              // seen from the truth trajectory, or matched
-  std::vector<int64_t> mapped_ids;    // every mapped plane matched to it, best first
-  double normal_error_deg = kNaN;     // of the best match
-  double offset_error_m = kNaN;       // best match's midpoint to the true line
+  bool expected = false;                      // seen from the truth trajectory, or matched
+  std::vector<int64_t> mapped_ids;            // every mapped plane matched to it, best first
+  double normal_error_deg = kNaN;             // of the best match
+  double offset_error_m = kNaN;               // best match's midpoint to the true line
   double endpoint_error_m[2] = {kNaN, kNaN};  // true ends to the mapped ends, in wall order
   double overlap_m = kNaN;
 };
@@ -44,16 +44,16 @@ struct ErrorSummary {
 };
 
 struct MapMetrics {
-  bool has_truth = false;            // a SIM_WORLD was received
-  int64_t true_walls = 0;            // long enough to count (VisibilityOptions)
+  bool has_truth = false;  // a SIM_WORLD was received
+  int64_t true_walls = 0;  // long enough to count (VisibilityOptions)
   int64_t expected_walls = 0;
   int64_t mapped_planes = 0;
   int64_t mapped_walls = 0;
   int64_t mapped_without_extent = 0;
-  int64_t walls_mapped = 0;          // true walls with at least one match
-  int64_t duplicates = 0;            // extra matches beyond the first, summed over true walls
-  int64_t spurious = 0;              // mapped walls matching no true wall
-  int64_t missed = 0;                // expected true walls without a match
+  int64_t walls_mapped = 0;  // true walls with at least one match
+  int64_t duplicates = 0;    // extra matches beyond the first, summed over true walls
+  int64_t spurious = 0;      // mapped walls matching no true wall
+  int64_t missed = 0;        // expected true walls without a match
   ErrorSummary normal_error_deg;
   ErrorSummary offset_error_m;
   ErrorSummary endpoint_error_m;

@@ -20,15 +20,15 @@ struct MatchOptions {
 struct VisibilityOptions {
   double range_m = 8.0;
   double hfov_deg = 90.0;
-  double sample_step_m = 0.25;  // spacing of the points tested along each wall
+  double sample_step_m = 0.25;     // spacing of the points tested along each wall
   double min_wall_length_m = 0.3;  // shorter true walls are ignored by the map metrics
 };
 
 struct EvalOptions {
   MatchOptions match;
   VisibilityOptions visibility;
-  double rpe_segment_m = 1.0;    // path length of the relative pose error's segments
-  double flush_period_s = 1.0;   // how often the logger rewrites the run folder (when changed)
+  double rpe_segment_m = 1.0;   // path length of the relative pose error's segments
+  double flush_period_s = 1.0;  // how often the logger rewrites the run folder (when changed)
   double svg_width_px = 900.0;
 };
 

@@ -29,16 +29,16 @@ geometry::Pose2 AlignSE2(const std::vector<Eigen::Vector2d>& source,
 
 // Error of one matched pose, for error.svg.
 struct ErrorSample {
-  double t_s = 0.0;          // truth utime in seconds
-  double position_m = 0.0;   // |estimate - truth| in x-y, no alignment
-  double aligned_m = 0.0;    // the same after SE(2) alignment
-  double yaw_deg = 0.0;      // wrapped estimate yaw - truth yaw
+  double t_s = 0.0;         // truth utime in seconds
+  double position_m = 0.0;  // |estimate - truth| in x-y, no alignment
+  double aligned_m = 0.0;   // the same after SE(2) alignment
+  double yaw_deg = 0.0;     // wrapped estimate yaw - truth yaw
 };
 
 struct TrajectoryMetrics {
   int64_t matched = 0;
-  double path_length_m = 0.0;       // of the truth, x-y
-  double ate_rmse_m = kNaN;         // no alignment: the first pose anchors the map
+  double path_length_m = 0.0;  // of the truth, x-y
+  double ate_rmse_m = kNaN;    // no alignment: the first pose anchors the map
   double ate_max_m = kNaN;
   double ate_final_m = kNaN;
   double ate_aligned_rmse_m = kNaN;  // after the best SE(2) alignment

@@ -3,7 +3,6 @@
 // LCM, so the logger service and the offline tool feed one recorder (tools/eval/shell/convert).
 
 #include <Eigen/Geometry>
-
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -11,7 +10,13 @@
 namespace relplane::eval {
 
 // Mirrors pose_t's status constants (lcmtypes/pose_t.lcm).
-enum class PoseStatus : int { kTruth = 0, kTracking = 1, kMotionModel = 2, kInitializing = 3, kLost = 4 };
+enum class PoseStatus : int {
+  kTruth = 0,
+  kTracking = 1,
+  kMotionModel = 2,
+  kInitializing = 3,
+  kLost = 4
+};
 
 // One pose of the estimate (POSE) or of the truth (SIM_TRUTH): world <- sensor.
 struct PoseSample {
