@@ -101,6 +101,25 @@ TEST(MapMetrics, WallsOutOfSightAreNotExpected) {
   EXPECT_FALSE(m.walls[5].expected);
 }
 
+TEST(MapMetrics, WallsBehindTheSensorAreNotExpected) {
+  // The robot only drives east along y = 0 facing +x: the west wall stays behind it.
+  std::vector<PoseSample> truth;
+  for (int i = 0; i <= 30; ++i) truth.push_back(testing::Pose(i, 0.1 * i, 0.0, 0.0));
+  const MapMetrics m = ComputeMapMetrics(Room(), MapSnapshot{}, truth, EvalOptions{});
+  ASSERT_EQ(m.walls.size(), 4u);
+  EXPECT_TRUE(m.walls[0].expected);   // south: within the 90 degree view ahead
+  EXPECT_TRUE(m.walls[1].expected);   // east, ahead
+  EXPECT_TRUE(m.walls[2].expected);   // north
+  EXPECT_FALSE(m.walls[3].expected);  // west, behind
+  EXPECT_EQ(m.missed, 3);
+  // A narrower field of view sees only the wall ahead.
+  EvalOptions narrow;
+  narrow.visibility.hfov_deg = 20.0;
+  const MapMetrics n = ComputeMapMetrics(Room(), MapSnapshot{}, truth, narrow);
+  EXPECT_EQ(n.expected_walls, 1);
+  EXPECT_TRUE(n.walls[1].expected);
+}
+
 TEST(MapMetrics, ErrorsOfAnOffsetAndOverlongWall) {
   MapSnapshot map = PerfectMap();
   // The south wall 0.05 m inside the room and 0.2 m too long at its east end.

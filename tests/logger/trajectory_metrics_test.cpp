@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <random>
 
 #include "fixtures.hpp"
@@ -73,6 +74,26 @@ TEST(TrajectoryMetrics, AlignSe2MatchesAKnownMotionOnRandomPoints) {
   EXPECT_NEAR(found.x, truth_motion.x, 1e-9);
   EXPECT_NEAR(found.y, truth_motion.y, 1e-9);
   EXPECT_NEAR(geometry::WrapAngle(found.yaw - truth_motion.yaw), 0.0, 1e-9);
+}
+
+TEST(TrajectoryMetrics, AlignSe2AgreesWithEigensUmeyamaOnNoisyPoints) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coord(-10.0, 10.0);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  const geometry::Pose2 motion{2.0, -1.0, -0.7};
+  Eigen::Matrix2Xd source(2, 40), target(2, 40);
+  std::vector<Eigen::Vector2d> src, dst;
+  for (int i = 0; i < 40; ++i) {
+    src.emplace_back(coord(rng), coord(rng));
+    dst.push_back(motion * src.back() + Eigen::Vector2d(noise(rng), noise(rng)));
+    source.col(i) = src.back();
+    target.col(i) = dst.back();
+  }
+  const Eigen::Matrix3d reference = Eigen::umeyama(source, target, false);
+  const geometry::Pose2 found = AlignSE2(src, dst);
+  EXPECT_NEAR(found.x, reference(0, 2), 1e-9);
+  EXPECT_NEAR(found.y, reference(1, 2), 1e-9);
+  EXPECT_NEAR(found.yaw, std::atan2(reference(1, 0), reference(0, 0)), 1e-9);
 }
 
 TEST(TrajectoryMetrics, ScaleDriftShowsAsRelativeErrorPerMetre) {
