@@ -30,6 +30,7 @@ struct RayGrid {
   int height = 0;
   std::vector<Eigen::Vector3d> directions;         // unit, index col * height + row
   std::vector<Eigen::Vector2d> column_directions;  // unit horizontal direction per column
+  std::vector<double> horizontal;  // per ray: length of the direction's x-y part (> 0)
 
   // A pinhole (depth camera) grid: pixel centres of a width x height image spanning the
   // horizontal and vertical fields of view (radians, each < pi).
