@@ -15,7 +15,8 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const M
   double best = -1.0;
   int64_t best_id = -1;
   for (const auto& [id, placed] : state.global) {
-    if (taken.count(id) || placed.known == Known::kAngle) continue;
+    // Only walls whose extent is mapped: a bare line would match any collinear wall.
+    if (taken.count(id) || placed.known != Known::kPoint) continue;
     const double dalpha = std::abs(geometry::WrapAngle(placed.alpha - alpha));
     if (dalpha > options.max_angle) continue;
     const Eigen::Vector2d n = NormalOf(placed.alpha), t = DirectionOf(placed.alpha);
@@ -24,7 +25,7 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const M
     // Overlap along the wall with the mapped extent, widened by a margin.
     const RltPlane* plane = state.planes.count(id) ? &state.planes.at(id) : nullptr;
     if (plane == nullptr) continue;
-    if (placed.known == Known::kPoint) {
+    {
       Eigen::Vector2d lo, hi;
       const double length = plane->Length();
       if (placed.ref == 0) {
@@ -32,12 +33,14 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const M
       } else {
         hi = placed.point, lo = placed.point - length * t;
       }
+      // Sufficient overlap, as in §II.A: a collinear neighbour (the same wall on the other side
+      // of a partition) must not match.
       const double m0 = t.dot(lo) - options.margin, m1 = t.dot(hi) + options.margin;
       const double o0 = std::min(t.dot(e0), t.dot(e1)), o1 = std::max(t.dot(e0), t.dot(e1));
-      if (std::min(m1, o1) - std::max(m0, o0) <= 0.0) continue;
+      const double shorter = std::max(std::min(m1 - m0, o1 - o0), 1e-3);
+      if (std::min(m1, o1) - std::max(m0, o0) < options.min_overlap * shorter) continue;
     }
-    const double score = (1.0 - dalpha / options.max_angle) + (1.0 - dist / options.max_distance) +
-                         (placed.known == Known::kPoint ? 1.0 : 0.0);
+    const double score = (1.0 - dalpha / options.max_angle) + (1.0 - dist / options.max_distance);
     if (score > best) best = score, best_id = id;
   }
   return best_id;

@@ -41,6 +41,7 @@ void AddSample(const Observation& oa, const Observation& ob, SubInterval* s) {
     const double cb = na_in_b.dot(rbt * (oa.edge[0] - ob.edge[i]));
     s->line[1][i][0] += cb, s->line[1][i][1] += cb * cb;
   }
+  s->cut[0] += oa.cut[0], s->cut[1] += oa.cut[1], s->cut[2] += ob.cut[0], s->cut[3] += ob.cut[1];
   const Vector2d pts[4] = {oa.edge[0], oa.edge[1], ob.edge[0], ob.edge[1]};
   for (int k = 0; k < 4; ++k) {
     double* e = s->edges[k];
@@ -97,6 +98,8 @@ Verdict Judge(const SubInterval& s, const ComparisonOptions& options) {
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) {
       std_ij[i][j] = Std2(s.pair[0][i][j], n);
+      // An edge cut by the view at any time in the interval is no wall end.
+      if (s.cut[i] > 0 || s.cut[2 + j] > 0) std_ij[i][j] = 1e9;
       if (std_ij[i][j] < std_ij[best_i][best_j]) best_i = i, best_j = j;
       if (std_ij[i][j] <= options.static_std) ++low;
     }

@@ -52,6 +52,14 @@ Pose2 Solve(const std::vector<Link>& links, const Pose2& prior, double prior_wei
     const Vector2d n = NormalOf(l.global.alpha);
     a += n * n.transpose();
     b += n * n.dot(l.global.point - rot * l.relative.point);
+  }
+  // Lines are exact whatever the edges do; static edges are added only where the lines leave
+  // a direction open (parallel walls), since an edge taken for static may not quite be.
+  Eigen::SelfAdjointEigenSolver<Matrix2d> eig(a);
+  const bool lines_suffice = eig.eigenvalues()(0) >= 0.5;
+  for (const Link& l : links) {
+    if (lines_suffice) break;
+    if (l.relative.known == Known::kAngle || l.global.known == Known::kAngle) continue;
     Vector2d rel_point;
     if (l.global.known == Known::kPoint && EdgePoint(*l.plane, l.relative, l.global.ref, &rel_point)) {
       const Vector2d t = DirectionOf(l.global.alpha);
@@ -105,15 +113,21 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
     }
     // Prior: the basis as observed when the group was first placed, from the pose then. It only
     // decides directions the links leave open.
+    // The basis may change as evidence grows, so only the sighting is kept, not the frame.
     const RltPlane* basis = state.Plane(group.relative.basis);
-    if (!group.prior_set && basis != nullptr) {
-      const Observation* obs = &ObservedWithPose(*basis, state, group.created, g == 0);
-      const Placement p = PlacementOf(*obs, PoseAt(state, obs->iteration, options),
-                                      group.relative.members[basis->Id()].ref);
-      group.prior = {p.point.x(), p.point.y(), p.alpha};
-      group.prior_set = true;
+    Pose2 prior = start;
+    if (basis != nullptr) {
+      const Observation* obs = basis->At(group.prior_iteration);
+      if (obs == nullptr || group.prior_basis != basis->Id()) {
+        obs = &ObservedWithPose(*basis, state, group.created, g == 0);
+        group.prior_iteration = obs->iteration;
+        group.prior_basis = basis->Id();
+        group.prior_pose = PoseAt(state, obs->iteration, options);
+      }
+      const Placement p =
+          PlacementOf(*obs, group.prior_pose, group.relative.members[basis->Id()].ref);
+      prior = {p.point.x(), p.point.y(), p.alpha};
     }
-    const Pose2 prior = group.prior_set ? group.prior : start;
     if (links.empty()) {
       // §II.D "the first grouping can be placed on the global map by comparing the relative
       // map coordinates of each rltplane to its first observation".

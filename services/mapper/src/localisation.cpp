@@ -27,7 +27,7 @@ struct System {
 }  // namespace
 
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
-                      const LocalisationOptions& options) {
+                      const LearnedFrustum& frustum, const LocalisationOptions& options) {
   PoseEstimate out;
   out.pose = previous;
   std::vector<bool> use(sightings.size(), true);
@@ -56,11 +56,19 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       // The sensor is d in front of the wall's line: n . c = n . P + d.
       const Vector2d n = NormalOf(x.world.alpha);
       sys.Add(n, n.dot(x.world.point) + x.obs->d);
-      // A static edge seen now fixes the position along the wall: c + R e = P.
+    }
+    // A static edge seen now fixes the position along the wall (c + R e = P); used only where
+    // the lines leave a direction open, as an edge taken for static may drift (occlusion).
+    Eigen::SelfAdjointEigenSolver<Matrix2d> line_eig(sys.a);
+    for (size_t k = 0; k < sightings.size(); ++k) {
+      if (line_eig.eigenvalues()(0) >= options.min_information) break;
+      const Sighting& x = sightings[k];
+      if (!use[k] || x.world.known == Known::kAngle) continue;
       const Vector2d t = DirectionOf(x.world.alpha);
       for (int e = 0; e < 2; ++e) {
         Vector2d mapped;
         if (!x.plane->static_now[e] || x.plane->static_now_iteration != x.obs->iteration) continue;
+        if (frustum.Clipped(x.obs->edge[e])) continue;
         if (!EdgePoint(*x.plane, x.world, e, &mapped)) continue;
         sys.Add(t, t.dot(mapped - rot * x.obs->edge[e]));
       }
@@ -76,6 +84,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
         const Vector2d t = DirectionOf(x.world.alpha);
         for (int e = 0; e < 2; ++e) {
           Vector2d mapped;
+          if (frustum.Clipped(x.obs->edge[e])) continue;  // cut by the view, not a wall end
           if (!EdgePoint(*x.plane, x.world, e, &mapped)) continue;
           const double along = t.dot(mapped - rot * x.obs->edge[e]);
           if (std::abs(along - t.dot(previous.Translation())) < kEdgeGate) sys.Add(t, along);

@@ -25,7 +25,15 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   std::vector<Observation> observations;
   for (const PlaneInput& input : planes) {
     auto obs = MakeObservation(input, iteration, options_.registration.max_wall_normal_z);
-    if (obs) observations.push_back(std::move(*obs));
+    if (!obs) continue;
+    frustum_.Observe(obs->edge[0]);
+    frustum_.Observe(obs->edge[1]);
+    observations.push_back(std::move(*obs));
+  }
+  // Edges cut by the view are never static edges (§II.C).
+  MarkOccludedEdges(&observations);
+  for (Observation& obs : observations) {
+    for (int e = 0; e < 2; ++e) obs.cut[e] = obs.cut[e] || frustum_.Clipped(obs.edge[e]);
   }
   const std::vector<int64_t> visible = Register(iteration, observations);  // §II.A
   UpdateGroups(state_, visible, iteration, options_.grouping);             // §II.B
@@ -53,7 +61,7 @@ std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation
       }
     }
     geometry::Pose2 pose = pose_;
-    if (!sightings.empty()) pose = mapper::Localise(sightings, pose_, options_.localisation).pose;
+    if (!sightings.empty()) pose = mapper::Localise(sightings, pose_, frustum_, options_.localisation).pose;
     std::set<int64_t> taken(match.begin(), match.end());
     for (size_t k = 0; k < observations.size(); ++k) {
       if (match[k] >= 0) continue;
@@ -144,7 +152,7 @@ PoseEstimate Mapper::Localise(int64_t iteration, const std::vector<int64_t>& vis
       sightings.push_back({&plane->Latest(), plane, provisional.back()});
     }
   }
-  PoseEstimate estimate = mapper::Localise(sightings, pose_, options_.localisation);
+  PoseEstimate estimate = mapper::Localise(sightings, pose_, frustum_, options_.localisation);
   if (initializing) estimate.status = PoseStatus::kInitializing;
   if (state_.first_iteration == iteration) estimate.pose = pose_;
   return estimate;

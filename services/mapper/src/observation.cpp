@@ -58,4 +58,23 @@ std::optional<Observation> MakeObservation(const PlaneInput& input, int64_t iter
   return obs;
 }
 
+void MarkOccludedEdges(std::vector<Observation>* observations) {
+  constexpr double kBearing = 0.0175;  // rad: same line of sight
+  constexpr double kNearer = 0.05;     // m
+  auto& obs = *observations;
+  for (size_t a = 0; a < obs.size(); ++a) {
+    for (int e = 0; e < 2; ++e) {
+      const Eigen::Vector2d& p = obs[a].edge[e];
+      const double bearing = std::atan2(p.y(), p.x()), range = p.norm();
+      for (size_t b = 0; b < obs.size() && !obs[a].cut[e]; ++b) {
+        if (b == a) continue;
+        for (const Eigen::Vector2d& q : obs[b].edge) {
+          const double db = std::abs(std::remainder(std::atan2(q.y(), q.x()) - bearing, 2 * M_PI));
+          if (db < kBearing && q.norm() < range - kNearer) obs[a].cut[e] = true;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace relplane::mapper

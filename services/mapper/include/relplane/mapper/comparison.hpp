@@ -51,6 +51,7 @@ struct SubInterval {
   double line[2][2][2] = {};  // [dir][edge][sum, sum^2]
   // Sensor-frame positions of A's and B's edges (x, y, x^2, y^2): did the sensor move at all?
   double edges[4][4] = {};
+  int cut[4] = {0, 0, 0, 0};  // samples where A's edges 0, 1 and B's edges 0, 1 were cut
 };
 
 class Comparison {

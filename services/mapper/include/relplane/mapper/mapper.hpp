@@ -58,6 +58,7 @@ class Mapper {
   MapperOptions options_;
   MapperState state_;
   geometry::Pose2 pose_;
+  LearnedFrustum frustum_;
   int64_t last_iteration_ = -1;
 };
 

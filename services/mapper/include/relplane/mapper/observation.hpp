@@ -40,6 +40,9 @@ struct Observation {
   std::vector<Eigen::Vector3d> vertices;
   int support = 0;
   double rms = 0.0;
+  // The edge is where the view cuts the wall (field of view, range, or a nearer plane in
+  // front), not a wall end: it cannot be a static edge (§II.C).
+  bool cut[2] = {false, false};
 
   Eigen::Vector2d Direction() const { return {-normal.y(), normal.x()}; }
   double Alpha() const { return std::atan2(normal.x(), -normal.y()); }
@@ -51,6 +54,10 @@ struct Observation {
 // (non-finite numbers, zero normal, fewer than two vertices).
 std::optional<Observation> MakeObservation(const PlaneInput& input, int64_t iteration,
                                            double max_normal_z);
+
+// Marks the edges of this iteration's observations that a nearer plane hides: another plane
+// has an edge on the same line of sight, closer to the sensor.
+void MarkOccludedEdges(std::vector<Observation>* observations);
 
 // Frame angle of a wall with unit 2D normal n.
 inline double AlphaOf(const Eigen::Vector2d& n) { return std::atan2(n.x(), -n.y()); }

@@ -20,7 +20,8 @@ struct BacktrackOptions {
   bool enabled = true;
   double max_angle = 0.15;     // rad
   double max_distance = 0.25;  // m between the transformed plane and the mapped line
-  double margin = 0.3;         // m the mapped extent is widened by for the overlap test
+  double margin = 0.1;         // m the mapped extent is widened by for the overlap test
+  double min_overlap = 0.3;    // of the shorter extent
 };
 
 // §II.B grouping.

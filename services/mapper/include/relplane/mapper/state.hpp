@@ -41,8 +41,10 @@ struct Group {
   int64_t created = 0;           // iteration
   RelativeMap relative;
   geometry::Pose2 placement;     // world <- group frame (§II.D)
-  geometry::Pose2 prior;         // the same from the pose when the group was first placed
-  bool prior_set = false;
+  // The sighting of the basis the prior placement comes from: iteration and the pose then.
+  int64_t prior_iteration = -1;
+  int64_t prior_basis = -1;
+  geometry::Pose2 prior_pose;
   bool dirty = true;
 };
 
