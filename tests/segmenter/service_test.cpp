@@ -1,0 +1,151 @@
+// The service shell on the in-process bus: options from YAML, PLANES per cloud, bad input
+// counted and survived.
+
+#include "service.hpp"
+
+#include <gtest/gtest.h>
+#include <relplane/plane_set_t.hpp>
+#include <relplane/pose_t.hpp>
+
+#include <limits>
+
+#include "convert.hpp"
+#include "options_yaml.hpp"
+#include "synthetic_scene.hpp"
+
+namespace relplane::segmenter {
+namespace {
+
+ServiceOptions FromYaml(const std::string& yaml) {
+  config::Reader r = config::Reader::FromString(yaml, "test.yaml", "segmenter");
+  ServiceOptions o = ReadServiceOptions(r);
+  r.Finish();
+  return o;
+}
+
+TEST(ServiceOptions, ReadsItsSectionAndRefusesUnknownOrBadKeys) {
+  const ServiceOptions o = FromYaml(
+      "sim: {rate_hz: 10}\nsegmenter:\n  sigma_max: 0.007\n  range_noise: 0.003\n"
+      "  max_points: 5000\n  min_points: 200\n");
+  EXPECT_FLOAT_EQ(o.segmenter.sigma_max, 0.007f);
+  EXPECT_FLOAT_EQ(o.segmenter.range_noise, 0.003f);
+  EXPECT_EQ(o.segmenter.min_points, 200);
+  EXPECT_EQ(o.max_points, 5000);
+  EXPECT_EQ(FromYaml("segmenter: {}\n").segmenter.min_points, Options{}.min_points);
+  EXPECT_THROW(FromYaml("segmenter:\n  sigma_mx: 0.01\n"), config::ConfigError);
+  EXPECT_THROW(FromYaml("segmenter:\n  cell_size: -1\n"), config::ConfigError);
+  EXPECT_THROW(FromYaml("segmenter:\n  sigma_min: 0.05\n  sigma_max: 0.01\n"),
+               config::ConfigError);
+  EXPECT_THROW(FromYaml("segmenter:\n  min_points: many\n"), config::ConfigError);
+}
+
+point_cloud_t Message(const Cloud& c, int64_t seq) {
+  point_cloud_t msg;
+  msg.utime = 100000 * seq;
+  msg.seq = seq;
+  msg.num_points = static_cast<int32_t>(c.size());
+  msg.x = c.x;
+  msg.y = c.y;
+  msg.z = c.z;
+  return msg;
+}
+
+class ServiceOnMemq : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    bus_ = bus::OpenLcmBus("memq://");
+    bus::Subscribe<plane_set_t>(
+        *bus_, "PLANES", [this](const plane_set_t& m) { planes_.push_back(m); },
+        [](const std::string&) {});
+  }
+  void Drain() {
+    while (bus_->Handle(20) > 0) {
+    }
+  }
+  std::unique_ptr<bus::Bus> bus_;
+  std::vector<plane_set_t> planes_;
+};
+
+TEST_F(ServiceOnMemq, PublishesOnePlaneSetPerCloudWithItsUtimeAndSeq) {
+  ServiceOptions options;
+  SegmenterService service(*bus_, options);
+  service.Subscribe();
+  testing::Sensor sensor;
+  const Cloud cloud = testing::Render(testing::Office(), sensor).cloud;
+  for (int64_t seq = 0; seq < 3; ++seq) bus::Publish(*bus_, "SENSOR_POINTS", Message(cloud, seq));
+  Drain();
+  ASSERT_EQ(planes_.size(), 3u);
+  for (int64_t seq = 0; seq < 3; ++seq) {
+    const plane_set_t& set = planes_[seq];
+    EXPECT_EQ(set.seq, seq);
+    EXPECT_EQ(set.utime, 100000 * seq);
+    ASSERT_GE(set.num_planes, 5);
+    EXPECT_EQ(set.num_planes, static_cast<int32_t>(set.planes.size()));
+    for (int k = 0; k < set.num_planes; ++k) {
+      const plane_t& p = set.planes[k];
+      EXPECT_EQ(p.id, k);
+      EXPECT_EQ(p.num_vertices, static_cast<int32_t>(p.vertices.size()));
+      EXPECT_GE(p.num_vertices, 3);
+      EXPECT_GT(p.d, 0.0f);  // normal towards the sensor at the origin
+      EXPECT_GT(p.num_points, 0);
+    }
+  }
+  EXPECT_EQ(service.Stats().Processed(), 3);
+  EXPECT_EQ(service.Stats().Rejected(), 0);
+}
+
+TEST_F(ServiceOnMemq, EmptyCloudGivesAnEmptySetAndNonFinitePointsAreCounted) {
+  SegmenterService service(*bus_, ServiceOptions{});
+  service.Subscribe();
+  bus::Publish(*bus_, "SENSOR_POINTS", Message(Cloud{}, 0));
+  Cloud nan_cloud;
+  for (int i = 0; i < 50; ++i) nan_cloud.Add(std::numeric_limits<float>::quiet_NaN(), 0, 0);
+  bus::Publish(*bus_, "SENSOR_POINTS", Message(nan_cloud, 1));
+  Drain();
+  ASSERT_EQ(planes_.size(), 2u);
+  EXPECT_EQ(planes_[0].num_planes, 0);
+  EXPECT_EQ(planes_[1].num_planes, 0);
+  const StatusSnapshot s = service.Stats().Snapshot();
+  EXPECT_NE(s.detail.find("non-finite points dropped 50 (total 50)"), std::string::npos)
+      << s.detail;
+}
+
+TEST_F(ServiceOnMemq, OversizeTruncatedAndForeignMessagesAreRejectedAndTheServiceGoesOn) {
+  ServiceOptions options;
+  options.max_points = 1000;
+  SegmenterService service(*bus_, options);
+  service.Subscribe();
+  Cloud big;
+  for (int i = 0; i < 1001; ++i) big.Add(2.0f, 0.001f * i, 0.0f);
+  bus::Publish(*bus_, "SENSOR_POINTS", Message(big, 0));  // over max_points
+  pose_t pose{};
+  bus::Publish(*bus_, "SENSOR_POINTS", pose);  // foreign type
+  point_cloud_t small = Message(Cloud{}, 1);
+  small.num_points = 2;
+  small.x = {1, 2};
+  small.y = {1, 2};
+  small.z = {1, 2};
+  std::vector<uint8_t> bytes(small.getEncodedSize());
+  small.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  bus_->PublishRaw("SENSOR_POINTS", bytes.data(), bytes.size() - 3);  // truncated
+  bus::Publish(*bus_, "SENSOR_POINTS", Message(Cloud{}, 2));  // and a good one after
+  Drain();
+  EXPECT_EQ(service.Stats().Rejected(), 3);
+  ASSERT_EQ(planes_.size(), 1u);
+  EXPECT_EQ(planes_[0].seq, 2);
+}
+
+TEST(Convert, MismatchedArraysAreRefused) {
+  point_cloud_t msg{};
+  msg.num_points = 3;
+  msg.x = {1, 2, 3};
+  msg.y = {1, 2};
+  msg.z = {1, 2, 3};
+  Cloud c;
+  std::string reason;
+  EXPECT_FALSE(FromPointCloud(msg, &c, &reason));
+  EXPECT_NE(reason.find("num_points 3"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace relplane::segmenter
