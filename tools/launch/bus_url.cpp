@@ -1,5 +1,10 @@
 #include "bus_url.hpp"
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <fstream>
 #include <sstream>
 
@@ -65,6 +70,19 @@ std::string ReadProcNetUdp() {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+bool HasMulticastRoute() {
+  // connect() on a UDP socket sends nothing; it only looks the route up.
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd < 0) return true;  // cannot tell: let LCM report its own error
+  sockaddr_in group{};
+  group.sin_family = AF_INET;
+  group.sin_port = htons(7667);
+  inet_pton(AF_INET, "239.255.76.67", &group.sin_addr);
+  const bool routed = connect(fd, reinterpret_cast<sockaddr*>(&group), sizeof group) == 0;
+  close(fd);
+  return routed;
 }
 
 long ReceiveBufferMax() {

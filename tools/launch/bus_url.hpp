@@ -30,6 +30,9 @@ std::vector<int> BoundUdpPorts(const std::string& proc_net_udp);
 // The text of /proc/net/udp ("" when unreadable).
 std::string ReadProcNetUdp();
 
+// Whether the kernel has a route for the udpm group (LCM cannot send without one).
+bool HasMulticastRoute();
+
 // net.core.rmem_max, the most a receive buffer may be set to; 0 when unknown.
 long ReceiveBufferMax();
 

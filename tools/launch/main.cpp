@@ -210,6 +210,11 @@ int Launch(Flags flags) {
   if (replay && lcm_logplayer.empty()) {
     throw SetupError("lcm-logplayer not found in PATH (Debian: liblcm-bin)");
   }
+  const std::string url = ChooseUrl(flags);
+  if (url.rfind("udpm://", 0) == 0 && !launch::HasMulticastRoute()) {
+    throw SetupError(
+        "no multicast route for the udpm bus: as root, ip route add 224.0.0.0/4 dev lo");
+  }
   if (flags.check) {
     launch::Say(flags.scenario + ": OK");
     return launch::kExitOk;
@@ -222,7 +227,6 @@ int Launch(Flags flags) {
   }
   const std::string scenario_file = run_dir + "/scenario.yaml";
   WriteFile(scenario_file, resolved_text);
-  const std::string url = ChooseUrl(flags);
   setenv("LCM_DEFAULT_URL", url.c_str(), 1);  // for the children and anything they start
 
   std::vector<launch::ChildSpec> children;
