@@ -106,7 +106,10 @@ void AddRandomClutter(int num_walls, int num_tilted, double extent, uint64_t see
         Eigen::Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5).normalized();
     Eigen::Vector3d u = Eigen::Vector3d(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
     u = (0.5 + 2.0 * unit(rng)) * u.normalized();
-    const Eigen::Vector3d v = (0.5 + 2.0 * unit(rng)) * u.cross(axis).normalized();
+    Eigen::Vector3d across = u.cross(axis);
+    if (across.norm() < 1e-3 * u.norm()) across = u.cross(Eigen::Vector3d::UnitZ());
+    if (across.norm() < 1e-3 * u.norm()) across = u.cross(Eigen::Vector3d::UnitX());
+    const Eigen::Vector3d v = (0.5 + 2.0 * unit(rng)) * across.normalized();
     r.u = u;
     r.v = v;
     out->push_back(r);
