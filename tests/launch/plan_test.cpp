@@ -63,7 +63,7 @@ TEST(ServiceCommandTest, ConfigUrlAndPerServiceFlags) {
 TEST(RecorderCommandTest, UsesTheLongUrlFlag) {
   const ChildSpec recorder = RecorderCommand("/usr/bin/lcm-logger", "udpm://g:5", "/r");
   EXPECT_EQ(recorder.argv, (std::vector<std::string>{"/usr/bin/lcm-logger", "--lcm-url=udpm://g:5",
-                                                     "--force", "/r/bus.lcmlog"}));
+                                                     "--force", "--quiet", "/r/bus.lcmlog"}));
 }
 
 TEST(DefaultRunDirTest, NameAndUtcTimestamp) {

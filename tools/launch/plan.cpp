@@ -35,7 +35,9 @@ ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
 ChildSpec RecorderCommand(const std::string& lcm_logger, const std::string& url,
                           const std::string& run_dir) {
   // The long form: the short -l flag is broken in LCM 1.3.1 (DESIGN.md).
-  return {"lcm-logger", {lcm_logger, "--lcm-url=" + url, "--force", run_dir + "/bus.lcmlog"}};
+  // --quiet: its once-a-second summary would drown the services' output; errors still show.
+  return {"lcm-logger",
+          {lcm_logger, "--lcm-url=" + url, "--force", "--quiet", run_dir + "/bus.lcmlog"}};
 }
 
 ChildSpec ReplayCommand(const std::string& lcm_logplayer, const std::string& url,
