@@ -71,7 +71,10 @@ std::vector<geometry::Pose2> Drive(const std::vector<Eigen::Vector2d>& waypoints
 World StraightHallway(double length = 8.5, double width = 2.0);  // closed, from x = -1
 World HallwayWithDoors(double length = 14.0, double width = 2.0);
 World Office();       // 2 x 2 rooms joined by doors with jambs
-World HallwayLoop(double sx = 16.0, double sy = 10.0, double width = 2.0);
+// A rectangular loop of hallway (the paper's Fig. 5), centre line from (0,0); with door
+// recesses on the outer walls every `recess_spacing` m (0: none).
+World HallwayLoop(double sx = 16.0, double sy = 10.0, double width = 2.0,
+                  double recess_spacing = 0.0);
 
 struct RunResult {
   double ate_rmse = 0.0;     // m, x-y

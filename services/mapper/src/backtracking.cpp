@@ -28,7 +28,10 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const M
     {
       Eigen::Vector2d lo, hi;
       const double length = plane->Length();
-      if (placed.ref == 0) {
+      if (placed.has_other) {
+        lo = placed.ref == 0 ? placed.point : placed.other;
+        hi = placed.ref == 0 ? placed.other : placed.point;
+      } else if (placed.ref == 0) {
         lo = placed.point, hi = placed.point + length * t;
       } else {
         hi = placed.point, lo = placed.point - length * t;

@@ -216,14 +216,20 @@ void Comparison::Rebuild(RltPlane& a, RltPlane& b, int64_t now, const Comparison
       continue;
     }
     const int64_t pa = a.PhaseAt(ka), pb = b.PhaseAt(ka);
+    // Also split where an edge starts or stops being cut by the view: its static state changes.
+    const Observation& oa = obs_a[ia];
+    const Observation& ob = obs_b[ib];
+    const int cut_key = oa.cut[0] | oa.cut[1] << 1 | ob.cut[0] << 2 | ob.cut[1] << 3;
     const bool extend = !open_.empty() && open_.back().phase_a == pa &&
-                        open_.back().phase_b == pb && ka - open_.back().last <= max_gap &&
+                        open_.back().phase_b == pb && open_.back().cut_key == cut_key &&
+                        ka - open_.back().last <= max_gap &&
                         open_.back().n < options.max_subinterval;
     if (!extend) {
       SubInterval s;
       s.first = ka;
       s.phase_a = pa;
       s.phase_b = pb;
+      s.cut_key = cut_key;
       open_.push_back(s);
     }
     open_.back().last = ka;

@@ -60,11 +60,16 @@ Pose2 Solve(const std::vector<Link>& links, const Pose2& prior, double prior_wei
   for (const Link& l : links) {
     if (lines_suffice) break;
     if (l.relative.known == Known::kAngle || l.global.known == Known::kAngle) continue;
-    Vector2d rel_point;
-    if (l.global.known == Known::kPoint && EdgePoint(*l.plane, l.relative, l.global.ref, &rel_point)) {
+    for (int e = 0; e < 2; ++e) {
+      Vector2d rel_point, global_point;
+      if (!EdgePoint(*l.plane, l.global, e, &global_point) ||
+          !EdgePoint(*l.plane, l.relative, e, &rel_point)) {
+        continue;
+      }
       const Vector2d t = DirectionOf(l.global.alpha);
       a += t * t.transpose();
-      b += t * t.dot(l.global.point - rot * rel_point);
+      b += t * t.dot(global_point - rot * rel_point);
+      break;
     }
   }
   const Vector2d t = a.ldlt().solve(b);
@@ -98,6 +103,9 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
     } else {
       ++it;
     }
+  }
+  for (auto& [id, placed] : state.global) {
+    if (placed.has_other && static_cast<size_t>(placed.other_by) >= from) placed.has_other = false;
   }
   const Pose2 start{options.start_pose.x, options.start_pose.y, options.start_pose.yaw};
   for (size_t g = from; g < state.groups.size(); ++g) {
@@ -149,7 +157,19 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
     for (const auto& [id, rel] : group.relative.members) {
       auto it = state.global.find(id);
       // Hard chaining: the first group to place a plane wins, unless a later one knows more.
-      if (it != state.global.end() && it->second.known >= rel.known) continue;
+      // A later group that found the plane's other edge static adds that end to the map.
+      if (it != state.global.end() && it->second.known >= rel.known) {
+        Placement& placed = it->second;
+        if (placed.known == Known::kPoint && rel.known == Known::kPoint && rel.ref != placed.ref &&
+            !placed.has_other) {
+          const Vector2d t = DirectionOf(placed.alpha);
+          const Vector2d w = group.placement * rel.point;
+          placed.other = placed.point + t * t.dot(w - placed.point);
+          placed.has_other = true;
+          placed.other_by = static_cast<int64_t>(g);
+        }
+        continue;
+      }
       Placement world = Apply(group.placement, rel);
       if (rel.known == Known::kAngle) {
         // No comparison pins it yet: its line as seen when the group was made, from the pose

@@ -172,7 +172,10 @@ MapSnapshot Mapper::Map() const {
     const Eigen::Vector2d t = DirectionOf(placed.alpha), n = NormalOf(placed.alpha);
     Eigen::Vector2d lo, hi;
     const double length = plane.Length();
-    if (placed.known == Known::kPoint && placed.ref == 1) {
+    if (placed.known == Known::kPoint && placed.has_other) {
+      lo = placed.ref == 0 ? placed.point : placed.other;
+      hi = placed.ref == 0 ? placed.other : placed.point;
+    } else if (placed.known == Known::kPoint && placed.ref == 1) {
       hi = placed.point, lo = hi - length * t;
     } else {
       lo = placed.point, hi = lo + length * t;
@@ -187,7 +190,10 @@ MapSnapshot Mapper::Map() const {
     const Eigen::Vector2d mid = 0.5 * (lo + hi);
     m.centroid = Eigen::Vector3d(mid.x(), mid.y(), 0.5 * (z0 + z1));
     m.observations = plane.Count();
-    m.both_ends_known = placed.known == Known::kPoint && plane.FullLengthKnown();
+    m.both_ends_known =
+        placed.known == Known::kPoint && (placed.has_other || plane.FullLengthKnown());
+    m.end_known[0] = placed.known == Known::kPoint && (placed.ref == 0 || m.both_ends_known);
+    m.end_known[1] = placed.known == Known::kPoint && (placed.ref == 1 || m.both_ends_known);
     snapshot.planes.push_back(std::move(m));
   }
   for (const Group& g : state_.groups) {

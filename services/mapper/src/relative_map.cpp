@@ -43,6 +43,10 @@ bool EdgePoint(const RltPlane& plane, const Placement& placement, int edge, Vect
     *point = placement.point;
     return true;
   }
+  if (placement.has_other) {
+    *point = placement.other;
+    return true;
+  }
   if (!plane.FullLengthKnown()) return false;
   const double sign = edge == 1 ? 1.0 : -1.0;
   *point = placement.point + sign * plane.Length() * DirectionOf(placement.alpha);

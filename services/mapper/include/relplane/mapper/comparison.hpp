@@ -43,6 +43,7 @@ struct SubInterval {
   int64_t last = 0;
   int64_t phase_a = 0;
   int64_t phase_b = 0;
+  int cut_key = 0;  // which of the four edges are cut by the view (constant in a sub-interval)
   double n = 0.0;
   double sin_sum = 0.0;
   double cos_sum = 0.0;

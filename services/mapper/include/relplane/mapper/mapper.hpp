@@ -21,6 +21,7 @@ struct MappedPlane {
   std::vector<Eigen::Vector3d> vertices;  // the wall's rectangle, ends at its edges
   int64_t observations = 0;
   bool both_ends_known = false;
+  bool end_known[2] = {false, false};  // vertices[0] (lo) and vertices[1] (hi) are wall ends
 };
 
 struct MappedGroup {

@@ -26,6 +26,10 @@ struct Placement {
   Eigen::Vector2d point = Eigen::Vector2d::Zero();
   int ref = -1;  // Index(Edge) of the edge `point` is, or -1
   Known known = Known::kAngle;
+  // The other edge, when a later group found it static (global map only), and that group.
+  bool has_other = false;
+  Eigen::Vector2d other = Eigen::Vector2d::Zero();
+  int64_t other_by = -1;
 };
 
 // §II.D relative map of one group, in the frame of its basis rltplane.
