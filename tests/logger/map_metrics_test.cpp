@@ -120,6 +120,24 @@ TEST(MapMetrics, WallsBehindTheSensorAreNotExpected) {
   EXPECT_TRUE(n.walls[1].expected);
 }
 
+TEST(MapMetrics, WallsAboveTheSensorNeitherCountNorHide) {
+  MapSnapshot world = Room();
+  // A lintel-like strip 2.0-2.5 m high across the room at x = 2: the sensor at 1 m passes under.
+  PlaneRecord lintel = Wall(5, {2, -2}, {2, 2});
+  for (Eigen::Vector3d& v : lintel.vertices) v.z() = v.z() > 1.0 ? 2.5 : 2.0;
+  world.planes.push_back(lintel);
+  std::vector<PoseSample> truth;
+  for (int i = 0; i <= 10; ++i) truth.push_back(testing::Pose(i, 0.1 * i, 0.0, 0.0));
+  const MapMetrics m = ComputeMapMetrics(world, MapSnapshot{}, truth, EvalOptions{});
+  EXPECT_EQ(m.true_walls, 4);
+  EXPECT_TRUE(m.walls[1].expected);  // the east wall, seen under the strip
+  // Raised to the sensor's height the strip is a wall and hides the east wall.
+  for (Eigen::Vector3d& v : world.planes.back().vertices) v.z() = v.z() > 2.2 ? 2.5 : 0.0;
+  const MapMetrics n = ComputeMapMetrics(world, MapSnapshot{}, truth, EvalOptions{});
+  EXPECT_EQ(n.true_walls, 5);
+  EXPECT_FALSE(n.walls[1].expected);
+}
+
 TEST(MapMetrics, ErrorsOfAnOffsetAndOverlongWall) {
   MapSnapshot map = PerfectMap();
   // The south wall 0.05 m inside the room and 0.2 m too long at its east end.

@@ -100,10 +100,13 @@ std::vector<WallLine> WallsOf(const std::vector<PlaneRecord>& planes, int64_t* w
     double t_max = 0.0;
     Eigen::Vector2d mean = Eigen::Vector2d::Zero();
     for (size_t i = 0; i < plane.vertices.size(); ++i) {
-      const double t = dir.dot(plane.vertices[i].head<2>());
+      const Eigen::Vector3d& v = plane.vertices[i];
+      const double t = dir.dot(v.head<2>());
       t_min = i == 0 ? t : std::min(t_min, t);
       t_max = i == 0 ? t : std::max(t_max, t);
-      mean += plane.vertices[i].head<2>();
+      wall.z_min = i == 0 ? v.z() : std::min(wall.z_min, v.z());
+      wall.z_max = i == 0 ? v.z() : std::max(wall.z_max, v.z());
+      mean += v.head<2>();
     }
     if (plane.vertices.size() < 2 || t_max - t_min < 1e-6) {
       if (without_extent != nullptr) ++*without_extent;
@@ -117,6 +120,19 @@ std::vector<WallLine> WallsOf(const std::vector<PlaneRecord>& planes, int64_t* w
     walls.push_back(wall);
   }
   return walls;
+}
+
+double SensorHeight(const std::vector<PoseSample>& truth) {
+  if (truth.empty()) return kNaN;
+  std::vector<double> z;
+  z.reserve(truth.size());
+  for (const PoseSample& p : truth) z.push_back(p.position.z());
+  std::nth_element(z.begin(), z.begin() + z.size() / 2, z.end());
+  return z[z.size() / 2];
+}
+
+bool SpansHeight(const WallLine& wall, double z) {
+  return std::isnan(z) || (wall.z_min <= z && z <= wall.z_max);
 }
 
 bool WallSeenFrom(const WallLine& wall, const std::vector<WallLine>& walls,
@@ -155,14 +171,15 @@ MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
   MapMetrics m;
   m.has_truth = !world.planes.empty();
   m.mapped_planes = static_cast<int64_t>(map.planes.size());
-  std::vector<WallLine> true_walls = WallsOf(world.planes);
-  const std::vector<WallLine> all_true_walls = true_walls;  // every wall occludes
-  true_walls.erase(std::remove_if(true_walls.begin(), true_walls.end(),
-                                  [&](const WallLine& w) {
-                                    return w.segment.Length() <
-                                           options.visibility.min_wall_length_m;
-                                  }),
-                   true_walls.end());
+  // Only walls at the sensor's height are walls to a 2½D sensor, for counting and occluding.
+  const double sensor_z = SensorHeight(truth);
+  std::vector<WallLine> occluders;
+  std::vector<WallLine> true_walls;
+  for (const WallLine& w : WallsOf(world.planes)) {
+    if (!SpansHeight(w, sensor_z)) continue;
+    occluders.push_back(w);
+    if (w.segment.Length() >= options.visibility.min_wall_length_m) true_walls.push_back(w);
+  }
   const std::vector<WallLine> mapped = WallsOf(map.planes, &m.mapped_without_extent);
   m.true_walls = static_cast<int64_t>(true_walls.size());
   m.mapped_walls = static_cast<int64_t>(mapped.size());
@@ -220,7 +237,7 @@ MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
       ++m.walls_mapped;
       m.duplicates += static_cast<int64_t>(list.size()) - 1;
     }
-    wm.expected = !list.empty() || WallSeenFrom(tw, all_true_walls, viewpoints, options.visibility);
+    wm.expected = !list.empty() || WallSeenFrom(tw, occluders, viewpoints, options.visibility);
     if (wm.expected) ++m.expected_walls;
     if (wm.expected && list.empty()) ++m.missed;
     m.walls.push_back(wm);

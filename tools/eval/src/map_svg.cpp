@@ -211,9 +211,17 @@ std::string RenderMapSvg(const MapPicture& pic) {
                       tick_style);
   }
   out += "<g id=\"grid\">\n" + grid + "</g>\n";
+  // Walls the sensor's height passes through are drawn solid; lintels and the like thin.
+  const double sensor_z = SensorHeight(truth);
+  std::vector<WallLine> at_height, off_height;
+  for (const WallLine& w : true_walls) {
+    (SpansHeight(w, sensor_z) ? at_height : off_height).push_back(w);
+  }
   out += "<g id=\"true-walls\">\n" +
-         Walls(true_walls, view, "stroke=\"#b0b0b0\" stroke-width=\"6\" stroke-linecap=\"round\"",
+         Walls(at_height, view, "stroke=\"#b0b0b0\" stroke-width=\"6\" stroke-linecap=\"butt\"",
                "true wall") +
+         Walls(off_height, view, "stroke=\"#b0b0b0\" stroke-width=\"1.5\" stroke-dasharray=\"2 2\"",
+               "true wall above or below the sensor") +
          "</g>\n";
   out += "<g id=\"groups\">\n" + Groups(map, view) + "</g>\n";
   out += "<g id=\"mapped-walls\">\n" +

@@ -19,12 +19,21 @@ struct WallLine {
   geometry::Segment2 segment;
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX();
   double offset = 0.0;
+  double z_min = 0.0;  // vertical extent of the vertices
+  double z_max = 0.0;
 };
 
 // Walls are the planes with |normal.z| < 0.1 (DESIGN: scenario conventions) whose vertices span
 // a segment. `without_extent` (optional) counts walls with fewer than two distinct vertices.
 std::vector<WallLine> WallsOf(const std::vector<PlaneRecord>& planes,
                               int64_t* without_extent = nullptr);
+
+// The sensor's height: the median z of the truth poses (NaN without any).
+double SensorHeight(const std::vector<PoseSample>& truth);
+
+// Whether the wall spans height `z` (always true for a NaN z). A 2½D sensor at z sees a wall
+// only there: a lintel above a door neither counts as a wall nor hides one.
+bool SpansHeight(const WallLine& wall, double z);
 
 // The matching of one true wall.
 struct WallMatch {
