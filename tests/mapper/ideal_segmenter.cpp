@@ -199,13 +199,15 @@ World Office() {
   auto wall = [&](double ax, double ay, double bx, double by) {
     w.walls.push_back({{ax, ay}, {bx, by}});
   };
-  // Outer walls.
-  wall(-3, -2.5, 9, -2.5);
+  // Outer walls, split where inner walls meet them (each piece is one room's wall).
+  wall(-3, -2.5, 3, -2.5);
+  wall(3, -2.5, 9, -2.5);
   wall(9, -2.5, 9, 2.5);
   wall(9, 2.5, 3, 2.5);
   wall(3, 2.5, 3, 7.5);
   wall(3, 7.5, -3, 7.5);
-  wall(-3, 7.5, -3, -2.5);
+  wall(-3, 7.5, -3, 2.5);
+  wall(-3, 2.5, -3, -2.5);
   // Wall between A and B (x = 3) with a door at y in [-0.6, 0.6].
   wall(3, -2.5, 3, -0.6);
   wall(3, 0.6, 3, 2.5);

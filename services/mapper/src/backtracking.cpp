@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "relplane/mapper/global_map.hpp"
 #include "relplane/mapper/relative_map.hpp"
 
 namespace relplane::mapper {
@@ -15,7 +16,7 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const M
   double best = -1.0;
   int64_t best_id = -1;
   for (const auto& [id, placed] : state.global) {
-    // Only walls whose extent is mapped: a bare line would match any collinear wall.
+    // Only walls with a mapped edge: a bare line's extent is only as good as the pose was.
     if (taken.count(id) || placed.known != Known::kPoint) continue;
     const double dalpha = std::abs(geometry::WrapAngle(placed.alpha - alpha));
     if (dalpha > options.max_angle) continue;
@@ -27,15 +28,7 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const M
     if (plane == nullptr) continue;
     {
       Eigen::Vector2d lo, hi;
-      const double length = plane->Length();
-      if (placed.has_other) {
-        lo = placed.ref == 0 ? placed.point : placed.other;
-        hi = placed.ref == 0 ? placed.other : placed.point;
-      } else if (placed.ref == 0) {
-        lo = placed.point, hi = placed.point + length * t;
-      } else {
-        hi = placed.point, lo = placed.point - length * t;
-      }
+      WallEnds(state, *plane, placed, &lo, &hi);
       // Sufficient overlap, as in §II.A: a collinear neighbour (the same wall on the other side
       // of a partition) must not match.
       const double m0 = t.dot(lo) - options.margin, m1 = t.dot(hi) + options.margin;

@@ -94,6 +94,36 @@ Placement PlacementOf(const Observation& obs, const Pose2& pose, int ref) {
   return Apply(pose, local);
 }
 
+void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& placed,
+              Vector2d* lo_out, Vector2d* hi_out) {
+  const Vector2d t = DirectionOf(placed.alpha);
+  const double length = plane.Length();
+  Vector2d lo, hi;
+  if (placed.known == Known::kPoint && placed.has_other) {
+    lo = placed.ref == 0 ? placed.point : placed.other;
+    hi = placed.ref == 0 ? placed.other : placed.point;
+  } else if (placed.known == Known::kPoint && placed.ref == 1) {
+    hi = placed.point, lo = hi - length * t;
+  } else if (placed.known == Known::kPoint) {
+    lo = placed.point, hi = lo + length * t;
+  } else {
+    lo = hi = placed.point;
+    const auto& all = plane.Observations();
+    for (size_t i = all.size(); i > 0; --i) {
+      auto pose = state.poses.find(all[i - 1].iteration);
+      if (pose == state.poses.end()) continue;
+      const Vector2d a = pose->second * all[i - 1].edge[0];
+      const Vector2d b = pose->second * all[i - 1].edge[1];
+      lo = placed.point + t * t.dot(a - placed.point);
+      hi = placed.point + t * t.dot(b - placed.point);
+      if (t.dot(hi - lo) < 0) std::swap(lo, hi);
+      break;
+    }
+  }
+  *lo_out = lo;
+  *hi_out = hi;
+}
+
 void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options) {
   // Forget what the re-placed groups placed.
   for (auto it = state.placed_by.begin(); it != state.placed_by.end();) {

@@ -1,6 +1,7 @@
 #include "relplane/mapper/mapper.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "relplane/mapper/backtracking.hpp"
@@ -10,6 +11,12 @@
 #include "relplane/mapper/relative_map.hpp"
 
 namespace relplane::mapper {
+namespace {
+
+constexpr double kMergeAngle = 0.05;     // rad
+constexpr double kMergeDistance = 0.1;   // m
+
+}  // namespace
 
 Mapper::Mapper(MapperOptions options) : options_(std::move(options)) {
   pose_ = {options_.start_pose.x, options_.start_pose.y, options_.start_pose.yaw};
@@ -169,17 +176,9 @@ MapSnapshot Mapper::Map() const {
   for (const auto& [id, placed] : state_.global) {
     const RltPlane& plane = state_.planes.at(id);
     if (placed.known == Known::kAngle) continue;
-    const Eigen::Vector2d t = DirectionOf(placed.alpha), n = NormalOf(placed.alpha);
+    const Eigen::Vector2d n = NormalOf(placed.alpha);
     Eigen::Vector2d lo, hi;
-    const double length = plane.Length();
-    if (placed.known == Known::kPoint && placed.has_other) {
-      lo = placed.ref == 0 ? placed.point : placed.other;
-      hi = placed.ref == 0 ? placed.other : placed.point;
-    } else if (placed.known == Known::kPoint && placed.ref == 1) {
-      hi = placed.point, lo = hi - length * t;
-    } else {
-      lo = placed.point, hi = lo + length * t;
-    }
+    WallEnds(state_, plane, placed, &lo, &hi);
     const double z0 = plane.ZMin() + Height(), z1 = plane.ZMax() + Height();
     MappedPlane m;
     m.id = id;
@@ -196,6 +195,33 @@ MapSnapshot Mapper::Map() const {
     m.end_known[1] = placed.known == Known::kPoint && (placed.ref == 1 || m.both_ends_known);
     snapshot.planes.push_back(std::move(m));
   }
+  // §II.D end: a mapped wall lying inside another on the same line is the same wall seen as a
+  // second rltplane (the loop was not closed on it); keep the better-observed one.
+  std::vector<bool> drop(snapshot.planes.size(), false);
+  for (size_t i = 0; i < snapshot.planes.size(); ++i) {
+    const MappedPlane& a = snapshot.planes[i];
+    for (size_t j = 0; j < snapshot.planes.size() && !drop[i]; ++j) {
+      const MappedPlane& b = snapshot.planes[j];
+      if (i == j || drop[j] || a.normal.dot(b.normal) < std::cos(kMergeAngle)) continue;
+      if (b.observations < a.observations || (b.observations == a.observations && j > i)) continue;
+      const Eigen::Vector2d n = b.normal.head<2>(), t(-n.y(), n.x());
+      const Eigen::Vector2d b0 = b.vertices[0].head<2>(), b1 = b.vertices[1].head<2>();
+      const double s0 = std::min(t.dot(b0), t.dot(b1)) - kMergeDistance;
+      const double s1 = std::max(t.dot(b0), t.dot(b1)) + kMergeDistance;
+      bool inside = true;
+      for (int e = 0; e < 2; ++e) {
+        const Eigen::Vector2d p = a.vertices[e].head<2>();
+        inside = inside && std::abs(n.dot(p) + b.d) < kMergeDistance && t.dot(p) >= s0 &&
+                 t.dot(p) <= s1;
+      }
+      drop[i] = inside;
+    }
+  }
+  std::vector<MappedPlane> kept;
+  for (size_t i = 0; i < snapshot.planes.size(); ++i) {
+    if (!drop[i]) kept.push_back(std::move(snapshot.planes[i]));
+  }
+  snapshot.planes = std::move(kept);
   for (const Group& g : state_.groups) {
     snapshot.groups.push_back({g.id, g.relative.basis, g.members});
   }

@@ -14,6 +14,12 @@ namespace relplane::mapper {
 // `ref` (or at the foot of the perpendicular from the sensor when ref < 0).
 Placement PlacementOf(const Observation& obs, const geometry::Pose2& pose, int ref);
 
+// The mapped wall's two ends (lo, hi along its direction): its static edges where known, else
+// its length from the known one; for a wall known only by its line, the extent last seen, from
+// the pose then.
+void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& placed,
+              Eigen::Vector2d* lo, Eigen::Vector2d* hi);
+
 // Re-places groups `from`, `from + 1`, ... (hard chaining: a change in one group moves every
 // later one). Placements made by those groups are recomputed.
 void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options);
