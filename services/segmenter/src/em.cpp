@@ -77,25 +77,34 @@ void MStep(const Cloud& points, const Responsibilities& resp, const Options& opt
     std::vector<float> weight(n);
     for (int i = 0; i < n; ++i) weight[i] = r[i] * var_j / (var_j + resp.range_variance[i]);
     const float* w = weight.data();
-    // Two passes (mean, then centred scatter) keep the sums well conditioned in double.
-    double sw = 0.0;
-    Eigen::Vector3d sp = Eigen::Vector3d::Zero();
+    // One pass of moments about the previous centroid (close to the new one, so the sums stay
+    // well conditioned), in double.
+    const Eigen::Vector3f ref = plane.centroid;
+    double sw = 0.0, support = 0.0;
+    double s1[3] = {0, 0, 0}, s2[6] = {0, 0, 0, 0, 0, 0};
     for (int i = 0; i < n; ++i) {
+      support += r[i];
       if (w[i] < kMinWeight) continue;
-      sw += w[i];
-      sp += w[i] * Eigen::Vector3d(points.x[i], points.y[i], points.z[i]);
+      const double wi = w[i];
+      const double x = points.x[i] - ref.x(), y = points.y[i] - ref.y(), z = points.z[i] - ref.z();
+      sw += wi;
+      s1[0] += wi * x;
+      s1[1] += wi * y;
+      s1[2] += wi * z;
+      s2[0] += wi * x * x;
+      s2[1] += wi * x * y;
+      s2[2] += wi * x * z;
+      s2[3] += wi * y * y;
+      s2[4] += wi * y * z;
+      s2[5] += wi * z * z;
     }
-    double support = 0.0;
-    for (int i = 0; i < n; ++i) support += r[i];
     plane.support = static_cast<float>(support);
     if (sw < 3.0) continue;  // too little support to fit; pruning decides its fate
-    const Eigen::Vector3d mean = sp / sw;
-    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-    for (int i = 0; i < n; ++i) {
-      if (w[i] < kMinWeight) continue;
-      const Eigen::Vector3d q = Eigen::Vector3d(points.x[i], points.y[i], points.z[i]) - mean;
-      scatter.noalias() += w[i] * q * q.transpose();
-    }
+    const Eigen::Vector3d m(s1[0] / sw, s1[1] / sw, s1[2] / sw);
+    Eigen::Matrix3d scatter;
+    scatter << s2[0], s2[1], s2[2], s2[1], s2[3], s2[4], s2[2], s2[4], s2[5];
+    scatter -= sw * m * m.transpose();
+    const Eigen::Vector3d mean = ref.cast<double>() + m;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
     eig.computeDirect(scatter);
     Eigen::Vector3d normal = eig.eigenvectors().col(0);

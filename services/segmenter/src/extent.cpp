@@ -7,6 +7,7 @@
 
 #include "relplane/segmenter/hull.hpp"
 #include "relplane/segmenter/merge_pieces.hpp"
+#include "relplane/segmenter/moments.hpp"
 
 namespace relplane::segmenter {
 namespace {
@@ -31,10 +32,9 @@ void PlaneAxes(const Eigen::Vector3f& n, bool vertical, Eigen::Vector3f* u, Eige
 // extreme points along the piece's own axes for the hull.
 struct Cell {
   int ix = 0, iy = 0;
-  int count = 0;
   int solid = 0;  // points that are not on the strip where two planes meet
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d sum_sq = Eigen::Matrix3d::Zero();
+  LocalMoments all;
+  LocalMoments trimmed;  // second pass: the points near the piece's first fit
   Eigen::Vector2f lo_a{kInf, 0}, hi_a{-kInf, 0}, lo_b{0, kInf}, hi_b{0, -kInf};
 };
 
@@ -51,6 +51,7 @@ struct Piece {
   Eigen::Vector3f trimmed_centroid = Eigen::Vector3f::Constant(kInf);
   Eigen::Vector3d trimmed_sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d trimmed_sum_sq = Eigen::Matrix3d::Zero();
+  float trim = 0.0f;  // distance from the first fit within which points are kept
   Eigen::Vector3f u, v;
   float a_min = kInf, a_max = -kInf, b_min = kInf, b_max = -kInf;
 };
@@ -87,6 +88,21 @@ int LabelCells(const std::vector<Cell>& cells, const std::vector<int>& slot_of, 
     ++pieces;
   }
   return pieces;
+}
+
+// A cell whose eight neighbours belong to its piece lies inside the piece: its points cannot
+// shape the hull (to within a cell), so they are left out of it.
+bool Interior(const Cell& c, const std::vector<int>& slot_of, const std::vector<int>& piece_of,
+              int64_t w, int64_t h) {
+  if (c.ix == 0 || c.iy == 0 || c.ix == w - 1 || c.iy == h - 1) return false;
+  const int piece = piece_of[slot_of[static_cast<size_t>(c.iy) * w + c.ix]];
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int other = slot_of[static_cast<size_t>(c.iy + dy) * w + c.ix + dx];
+      if (other < 0 || piece_of[other] != piece) return false;
+    }
+  }
+  return true;
 }
 
 // Least-squares refit of a piece from its moments about `origin`; normal towards the sensor.
@@ -169,11 +185,8 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
     }
     cell_of_point[k] = slot;
     Cell& c = cells[slot];
-    const Eigen::Vector3d q = (cloud.Point(idx[k]) - origin).cast<double>();
-    ++c.count;
     c.solid += ambiguous.empty() || !ambiguous[idx[k]];
-    c.sum += q;
-    c.sum_sq.noalias() += q * q.transpose();
+    c.all.Add(cloud.Point(idx[k]));
   }
   std::vector<int> piece_of;
   const int num_pieces = LabelCells(cells, slot_of, static_cast<int>(w), static_cast<int>(h),
@@ -182,9 +195,7 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
   for (size_t s = 0; s < cells.size(); ++s) {
     if (piece_of[s] < 0) continue;
     Piece& p = pieces[piece_of[s]];
-    p.count += cells[s].count;
-    p.sum += cells[s].sum;
-    p.sum_sq += cells[s].sum_sq;
+    cells[s].all.AddTo(origin, &p.count, &p.sum, &p.sum_sq);
   }
   for (Piece& p : pieces) {
     p.kept = p.count >= options.min_points;
@@ -192,6 +203,7 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
     Refit(origin, &p);
     p.vertical = std::fabs(p.out.normal.z()) < options.vertical_max_nz;
     PlaneAxes(p.out.normal, p.vertical, &p.u, &p.v);
+    p.trim = kTrimSigmas * std::max(p.out.rms, options.sigma_min);
   }
   // Second pass: extents along each piece's own refitted axes, and the moments of the points
   // near the fit, so the final fit ignores what the piece caught from a neighbouring surface.
@@ -203,13 +215,7 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
     if (piece_labels) (*piece_labels)[idx[k]] = piece;  // local index, made global below
     const Eigen::Vector3f q = cloud.Point(idx[k]) - p.out.centroid;
     const Eigen::Vector2f ab(p.u.dot(q), p.v.dot(q));
-    const float dist = p.out.normal.dot(q);
-    if (std::fabs(dist) <= kTrimSigmas * std::max(p.out.rms, options.sigma_min)) {
-      const Eigen::Vector3d qd = q.cast<double>();
-      ++p.trimmed_count;
-      p.trimmed_sum += qd;
-      p.trimmed_sum_sq.noalias() += qd * qd.transpose();
-    }
+    if (std::fabs(p.out.normal.dot(q)) <= p.trim) c.trimmed.Add(cloud.Point(idx[k]));
     if (p.vertical) {
       p.a_min = std::min(p.a_min, ab.x());
       p.a_max = std::max(p.a_max, ab.x());
@@ -222,11 +228,16 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
     if (ab.y() < c.lo_b.y()) c.lo_b = ab;
     if (ab.y() > c.hi_b.y()) c.hi_b = ab;
   }
+  for (size_t s = 0; s < cells.size(); ++s) {
+    if (piece_of[s] < 0 || !pieces[piece_of[s]].kept) continue;
+    Piece& p = pieces[piece_of[s]];
+    cells[s].trimmed.AddTo(p.out.centroid, &p.trimmed_count, &p.trimmed_sum, &p.trimmed_sum_sq);
+  }
   std::vector<std::vector<Eigen::Vector2f>> hull_points(num_pieces);
   for (size_t s = 0; s < cells.size(); ++s) {
     if (piece_of[s] < 0) continue;
     const Piece& p = pieces[piece_of[s]];
-    if (!p.kept || p.vertical) continue;
+    if (!p.kept || p.vertical || Interior(cells[s], slot_of, piece_of, w, h)) continue;
     for (const auto& e : {cells[s].lo_a, cells[s].hi_a, cells[s].lo_b, cells[s].hi_b}) {
       hull_points[piece_of[s]].push_back(e);
     }

@@ -1,0 +1,44 @@
+#pragma once
+// Point moments accumulated cheaply in float about a nearby reference point, then combined in
+// double: the per-point cost of a plane fit over a whole cloud without losing precision.
+
+#include <Eigen/Core>
+
+namespace relplane::segmenter {
+
+struct LocalMoments {
+  Eigen::Vector3f ref = Eigen::Vector3f::Zero();  // the first point added
+  int n = 0;
+  float sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+
+  void Add(const Eigen::Vector3f& p) {
+    if (n == 0) ref = p;
+    const float x = p.x() - ref.x(), y = p.y() - ref.y(), z = p.z() - ref.z();
+    ++n;
+    sx += x;
+    sy += y;
+    sz += z;
+    sxx += x * x;
+    sxy += x * y;
+    sxz += x * z;
+    syy += y * y;
+    syz += y * z;
+    szz += z * z;
+  }
+
+  // Adds these moments, taken about `origin` instead, to double sums:
+  // sum (o + q)(o + q)^T = n o o^T + o s^T + s o^T + S, with o = ref - origin.
+  void AddTo(const Eigen::Vector3f& origin, int* count, Eigen::Vector3d* sum,
+             Eigen::Matrix3d* sum_sq) const {
+    if (n == 0) return;
+    const Eigen::Vector3d o = (ref - origin).cast<double>();
+    const Eigen::Vector3d s(sx, sy, sz);
+    Eigen::Matrix3d ss;
+    ss << sxx, sxy, sxz, sxy, syy, syz, sxz, syz, szz;
+    *count += n;
+    *sum += n * o + s;
+    *sum_sq += n * o * o.transpose() + o * s.transpose() + s * o.transpose() + ss;
+  }
+};
+
+}  // namespace relplane::segmenter

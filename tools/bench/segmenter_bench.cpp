@@ -1,0 +1,107 @@
+// Speed of the EM segmenter (issue: 160x120 <= 1 ms, unorganized 640x480 <= 5 ms, one core).
+// "Stream": one Segmenter over alternating frames, seeded by the previous one, as the service
+// runs. "Cold": every frame from proposals alone.
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "relplane/pcd/pcd_reader.hpp"
+#include "relplane/segmenter/segmenter.hpp"
+#include "synthetic_scene.hpp"
+
+namespace {
+
+using namespace relplane::segmenter;
+
+// Two nearby views of the office, so a stream sees a moving sensor.
+std::vector<Cloud> OfficeFrames(int width, int height, bool unorganized) {
+  std::vector<Cloud> frames;
+  for (int k = 0; k < 2; ++k) {
+    testing::Sensor s;
+    s.width = width;
+    s.height = height;
+    s.sigma = 0.01;
+    s.world_from_sensor = Eigen::Translation3d(0.05 * k, 0, 1.0) *
+                          Eigen::AngleAxisd(0.02 * k, Eigen::Vector3d::UnitZ());
+    const auto world = testing::Office();
+    frames.push_back(unorganized ? testing::RenderUnorganized(world, s).cloud
+                                 : testing::Render(world, s).cloud);
+  }
+  return frames;
+}
+
+void Run(benchmark::State& state, const std::vector<Cloud>& frames, const Options& options,
+         bool cold) {
+  Segmenter segmenter(options);
+  size_t k = 0, planes = 0;
+  for (auto _ : state) {
+    if (cold) segmenter.Reset();
+    const Result r = segmenter.Segment(frames[k++ % frames.size()]);
+    planes = r.planes.size();
+    benchmark::DoNotOptimize(planes);
+  }
+  state.counters["points"] = static_cast<double>(frames[0].size());
+  state.counters["planes"] = static_cast<double>(planes);
+}
+
+void BM_Synthetic160x120Stream(benchmark::State& state) {
+  static const auto frames = OfficeFrames(160, 120, false);
+  Run(state, frames, Options{}, false);
+}
+void BM_Synthetic160x120Cold(benchmark::State& state) {
+  static const auto frames = OfficeFrames(160, 120, false);
+  Run(state, frames, Options{}, true);
+}
+void BM_Unorganized640x480Stream(benchmark::State& state) {
+  static const auto frames = OfficeFrames(640, 480, true);
+  Run(state, frames, Options{}, false);
+}
+void BM_Unorganized640x480Cold(benchmark::State& state) {
+  static const auto frames = OfficeFrames(640, 480, true);
+  Run(state, frames, Options{}, true);
+}
+
+std::vector<Cloud> KinectFrames() {
+  std::vector<Cloud> frames;
+  for (const char* name : {"frame_20121214T142255.814212.pcd", "frame_20121214T142256.068683.pcd",
+                           "frame_20121214T142256.332395.pcd"}) {
+    auto pcd = relplane::pcd::ReadPcd(std::string(RELPLANE_SHARED_DIR "/data/kinect/") + name);
+    relplane::pcd::OpticalToSensor(&pcd);
+    Cloud c;
+    c.x = pcd.x;
+    c.y = pcd.y;
+    c.z = pcd.z;
+    frames.push_back(std::move(c));
+  }
+  return frames;
+}
+
+Options KinectOptions() {  // as services/segmenter/kinect.yaml
+  Options o;
+  o.sigma_max = 0.007f;
+  o.range_noise = 0.003f;
+  return o;
+}
+
+void BM_Kinect640x480Stream(benchmark::State& state) {
+  static const auto frames = KinectFrames();
+  Run(state, frames, KinectOptions(), false);
+}
+void BM_Kinect640x480Cold(benchmark::State& state) {
+  static const auto frames = KinectFrames();
+  Run(state, frames, KinectOptions(), true);
+}
+
+#define SEGMENTER_BENCHMARK(fn) \
+  BENCHMARK(fn)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true)
+SEGMENTER_BENCHMARK(BM_Synthetic160x120Stream);
+SEGMENTER_BENCHMARK(BM_Synthetic160x120Cold);
+SEGMENTER_BENCHMARK(BM_Unorganized640x480Stream);
+SEGMENTER_BENCHMARK(BM_Unorganized640x480Cold);
+SEGMENTER_BENCHMARK(BM_Kinect640x480Stream);
+SEGMENTER_BENCHMARK(BM_Kinect640x480Cold);
+
+}  // namespace
+
+BENCHMARK_MAIN();
