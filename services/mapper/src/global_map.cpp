@@ -45,8 +45,8 @@ Pose2 Solve(const std::vector<Link>& links, const Pose2& prior, double prior_wei
   }
   const double yaw = links.empty() ? prior.yaw : std::atan2(s, c);
   const Matrix2d rot = Eigen::Rotation2Dd(yaw).toRotationMatrix();
-  Matrix2d a = prior_weight * Matrix2d::Identity();
-  Vector2d b = prior_weight * prior.Translation();
+  Matrix2d a = Matrix2d::Zero();
+  Vector2d b = Vector2d::Zero();
   for (const Link& l : links) {
     if (l.relative.known == Known::kAngle || l.global.known == Known::kAngle) continue;
     const Vector2d n = NormalOf(l.global.alpha);
@@ -71,6 +71,12 @@ Pose2 Solve(const std::vector<Link>& links, const Pose2& prior, double prior_wei
       b += t * t.dot(global_point - rot * rel_point);
       break;
     }
+  }
+  // The prior only decides a direction the links leave open.
+  Eigen::SelfAdjointEigenSolver<Matrix2d> final_eig(a);
+  if (final_eig.eigenvalues()(0) < 0.5) {
+    a += prior_weight * Matrix2d::Identity();
+    b += prior_weight * prior.Translation();
   }
   const Vector2d t = a.ldlt().solve(b);
   return {t.x(), t.y(), yaw};

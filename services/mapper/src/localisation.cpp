@@ -91,8 +91,12 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
         }
       }
     }
-    sys.a += options.prior_weight * Matrix2d::Identity();
-    sys.b += options.prior_weight * previous.Translation();
+    // The previous position only decides a direction the walls leave open.
+    Eigen::SelfAdjointEigenSolver<Matrix2d> final_eig(sys.a);
+    if (final_eig.eigenvalues()(0) < options.min_information) {
+      sys.a += options.prior_weight * Matrix2d::Identity();
+      sys.b += options.prior_weight * previous.Translation();
+    }
     const Vector2d pos = sys.a.ldlt().solve(sys.b);
     out.pose = {pos.x(), pos.y(), yaw};
     out.planes = static_cast<int>(planes.size());

@@ -1,0 +1,163 @@
+// §II.C pairwise comparison on hand-built observation sequences, checked against the geometry
+// the sequences were built from.
+#include <gtest/gtest.h>
+
+#include "relplane/common/geometry.hpp"
+#include "relplane/mapper/comparison.hpp"
+#include "relplane/mapper/observation.hpp"
+#include "relplane/mapper/rltplane.hpp"
+
+namespace relplane::mapper {
+namespace {
+
+using Eigen::Vector2d;
+
+// The part [s0, s1] (metres from `a` towards `b`) of the wall a-b seen from `pose`.
+Observation See(const geometry::Pose2& pose, Vector2d a, Vector2d b, double s0, double s1,
+                int64_t iteration) {
+  const geometry::Pose2 inv = pose.Inverse();
+  const Vector2d t = (b - a).normalized();
+  const Vector2d p0 = inv * (a + s0 * t), p1 = inv * (a + s1 * t);
+  PlaneInput in;
+  Vector2d n(-(p1 - p0).y(), (p1 - p0).x());
+  n.normalize();
+  if (n.dot(p0) > 0) n = -n;
+  in.normal = Eigen::Vector3d(n.x(), n.y(), 0);
+  in.d = -n.dot(p0);
+  in.centroid = Eigen::Vector3d(0.5 * (p0 + p1).x(), 0.5 * (p0 + p1).y(), 0.0);
+  in.vertices = {{p0.x(), p0.y(), -1}, {p1.x(), p1.y(), -1}, {p1.x(), p1.y(), 1},
+                 {p0.x(), p0.y(), 1}};
+  return *MakeObservation(in, iteration, 0.3);
+}
+
+struct Pair {
+  RltPlane a;
+  RltPlane b;
+  Comparison c{0, 1};
+};
+
+// Drives along +x; wall A is seen whole; wall B's visible part is [lo(k), hi(k)].
+template <class Lo, class Hi>
+Pair Build(Vector2d a0, Vector2d a1, Vector2d b0, Vector2d b1, int n, Lo lo, Hi hi) {
+  ComparisonOptions options;
+  auto pose = [](int k) { return geometry::Pose2{0.03 * k, 0.0, 0.0}; };
+  Pair p{RltPlane(0, See(pose(0), a0, a1, 0, (a1 - a0).norm(), 0), 0.05, 1000),
+         RltPlane(1, See(pose(0), b0, b1, lo(0), hi(0), 0), 0.05, 1000)};
+  for (int k = 1; k < n; ++k) {
+    p.a.Add(See(pose(k), a0, a1, 0, (a1 - a0).norm(), k));
+    p.b.Add(See(pose(k), b0, b1, lo(k), hi(k), k));
+  }
+  p.c.Update(p.a, p.b, n - 1, options, 5);
+  return p;
+}
+
+// Independent check: B's edge j seen from A's edge i in A's frame, from world geometry.
+Vector2d Expected(Vector2d a_edge, Vector2d a_dir, Vector2d b_edge) {
+  const Vector2d d = b_edge - a_edge;
+  return {a_dir.dot(d), Vector2d(-a_dir.y(), a_dir.x()).dot(d)};
+}
+
+// The end wall x = 6 (seen whole) and the left wall y = 1 from x = 2 to x = 9.
+const Vector2d kEnd0{6, -1}, kEnd1{6, 1}, kLeft0{2, 1}, kLeft1{9, 1};
+
+TEST(Comparison, GrowingPlaneFindsItsStaticEdge) {
+  // The left wall grows: its start (x = 2) is static, its far end moves out with the view.
+  Pair p = Build(kEnd0, kEnd1, kLeft0, kLeft1, 60, [](int) { return 0.0; },
+                 [](int k) { return 1.0 + 0.03 * k; });
+  const Observation& oa = p.a.Latest();
+  const DirectedStats& s = p.c.From(0);
+  // A's edges: lo/hi along its direction; find which pairing with B's static edge was kept.
+  int static_b = -1;
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      if (s.pair_count[i][j] > 0) static_b = j;
+    }
+  }
+  ASSERT_GE(static_b, 0);
+  const Observation& ob = p.b.Latest();
+  // The static edge of B is the one at world x = 2: the one farther from the moving far end.
+  const Vector2d world_b = geometry::Pose2{0.03 * 59, 0, 0} * ob.edge[static_b];
+  EXPECT_NEAR(world_b.x(), 2.0, 1e-9);
+  // Its relative location from A's edges matches the geometry.
+  for (int i = 0; i < 2; ++i) {
+    Vector2d mean;
+    if (!s.Pair(i, static_b, &mean)) continue;
+    const Vector2d a_edge = geometry::Pose2{0.03 * 59, 0, 0} * oa.edge[i];
+    EXPECT_TRUE(mean.isApprox(Expected(a_edge, DirectionOf(oa.Alpha()), Vector2d(2, 1)), 1e-9));
+  }
+  EXPECT_NEAR(std::abs(p.c.DeltaAlpha(0)), M_PI / 2, 1e-9);
+}
+
+TEST(Comparison, ShrinkingPlaneFindsItsStaticEdge) {
+  // The left wall shrinks: its far end (x = 9) is static, its near end is cut by the view.
+  Pair p = Build(kEnd0, kEnd1, kLeft0, kLeft1, 60, [](int k) { return 1.0 + 0.03 * k; },
+                 [](int) { return 7.0; });
+  const DirectedStats& s = p.c.From(0);
+  const Observation& ob = p.b.Latest();
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      if (s.pair_count[i][j] <= 0) continue;
+      const Vector2d world_b = geometry::Pose2{0.03 * 59, 0, 0} * ob.edge[j];
+      EXPECT_NEAR(world_b.x(), 9.0, 1e-9) << "a dynamic edge was taken for static";
+    }
+  }
+  EXPECT_GT(s.PairCount(0) + s.PairCount(1), 0.0);
+}
+
+TEST(Comparison, GrowingThenShrinkingSplitsTheInterval) {
+  // Grows from x = 2 for 40 iterations, then shrinks towards x = 9: the static edge changes.
+  auto lo = [](int k) { return k < 40 ? 0.0 : 0.05 * (k - 40); };
+  auto hi = [](int k) { return k < 40 ? 1.0 + 0.1 * k : 5.0 + 0.0 * k; };
+  Pair p = Build(kEnd0, kEnd1, kLeft0, kLeft1, 90, lo, hi);
+  EXPECT_NE(p.b.PhaseAt(10), p.b.PhaseAt(80));
+  const DirectedStats& s = p.c.From(0);
+  // Both of B's edges were found static, each in its own sub-interval.
+  double count_b[2] = {0, 0};
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) count_b[j] += s.pair_count[i][j];
+  }
+  EXPECT_GT(count_b[0], 0.0);
+  EXPECT_GT(count_b[1], 0.0);
+}
+
+TEST(Comparison, ParallelPlanesAcrossAreAmbiguous) {
+  // Hallway walls y = +1 and y = -1, both starting at x = 2 (static) and cut at the same
+  // distance ahead (dynamic): the static-static and the dynamic-dynamic pairings are both
+  // steady, so no location along the walls may be taken from this comparison (§II.C).
+  const Vector2d r0{2, -1}, r1{12, -1};
+  ComparisonOptions options;
+  RltPlane a(0, See({0, 0, 0}, kLeft0, {12, 1}, 0.0, 3.0, 0), 0.05, 1000);
+  RltPlane b(1, See({0, 0, 0}, r0, r1, 0.0, 3.0, 0), 0.05, 1000);
+  for (int k = 1; k < 60; ++k) {
+    const geometry::Pose2 pose{0.03 * k, 0, 0};
+    a.Add(See(pose, kLeft0, {12, 1}, 0.0, 3.0 + 0.03 * k, k));
+    b.Add(See(pose, r0, r1, 0.0, 3.0 + 0.03 * k, k));
+  }
+  Comparison c(0, 1);
+  c.Update(a, b, 59, options, 5);
+  EXPECT_GT(c.Ambiguous(), 0);
+  EXPECT_EQ(c.From(0).PairCount(0) + c.From(0).PairCount(1), 0.0);
+  // The separation of the two lines is still known.
+  double offset = 0.0;
+  ASSERT_TRUE(c.From(0).Line(0, &offset));
+  EXPECT_NEAR(std::abs(offset), 2.0, 1e-9);
+}
+
+TEST(Comparison, LeavingAndReenteringStartsANewSubInterval) {
+  // B is out of view for 20 iterations in the middle; the comparison must not bridge the gap.
+  ComparisonOptions options;
+  RltPlane a(0, See({0, 0, 0}, kEnd0, kEnd1, 0, 2, 0), 0.05, 1000);
+  RltPlane b(1, See({0, 0, 0}, kLeft0, kLeft1, 0, 1, 0), 0.05, 1000);
+  for (int k = 1; k < 80; ++k) {
+    const geometry::Pose2 pose{0.03 * k, 0, 0};
+    a.Add(See(pose, kEnd0, kEnd1, 0, 2, k));
+    if (k < 30 || k >= 50) b.Add(See(pose, kLeft0, kLeft1, 0, 1.0 + 0.03 * k, k));
+  }
+  Comparison c(0, 1);
+  c.Update(a, b, 79, options, 5);
+  EXPECT_DOUBLE_EQ(c.Common(), 60.0);
+  EXPECT_GT(c.From(0).PairCount(0) + c.From(0).PairCount(1), 0.0);
+}
+
+}  // namespace
+}  // namespace relplane::mapper

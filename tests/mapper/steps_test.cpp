@@ -1,0 +1,169 @@
+// Unit tests of the mapper's other steps: observation reduction, registration (§II.A),
+// grouping (§II.B), relative and global maps (§II.D), localisation (§II.D, §II.E), and the
+// backtracking of a plane that leaves and re-enters the view (§II.A end).
+#include <gtest/gtest.h>
+
+#include "ideal_segmenter.hpp"
+#include "relplane/mapper/grouping.hpp"
+#include "relplane/mapper/localisation.hpp"
+#include "relplane/mapper/mapper.hpp"
+#include "relplane/mapper/registration.hpp"
+
+namespace relplane::mapper {
+namespace {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+PlaneInput Wall(Vector2d p0, Vector2d p1) {
+  PlaneInput in;
+  Vector2d n(-(p1 - p0).y(), (p1 - p0).x());
+  n.normalize();
+  if (n.dot(p0) > 0) n = -n;
+  in.normal = Vector3d(n.x(), n.y(), 0);
+  in.d = -n.dot(p0);
+  in.centroid = Vector3d(0.5 * (p0 + p1).x(), 0.5 * (p0 + p1).y(), 0);
+  in.vertices = {{p0.x(), p0.y(), -1}, {p1.x(), p1.y(), -1}, {p1.x(), p1.y(), 1},
+                 {p0.x(), p0.y(), 1}};
+  return in;
+}
+
+TEST(Observation, ReducesAWallAndRejectsFloorsAndBadNumbers) {
+  auto obs = MakeObservation(Wall({3, -1}, {3, 2}), 7, 0.3);
+  ASSERT_TRUE(obs);
+  EXPECT_NEAR(obs->d, 3.0, 1e-12);
+  EXPECT_TRUE(obs->normal.isApprox(Vector2d(-1, 0)));
+  EXPECT_NEAR(obs->Length(), 3.0, 1e-12);
+  EXPECT_NEAR(obs->z_max - obs->z_min, 2.0, 1e-12);
+  PlaneInput floor = Wall({3, -1}, {3, 2});
+  floor.normal = Vector3d(0, 0, 1);
+  EXPECT_FALSE(MakeObservation(floor, 0, 0.3));
+  PlaneInput nan = Wall({3, -1}, {3, 2});
+  nan.d = std::nan("");
+  EXPECT_FALSE(MakeObservation(nan, 0, 0.3));
+  PlaneInput zero = Wall({3, -1}, {3, 2});
+  zero.normal.setZero();
+  EXPECT_FALSE(MakeObservation(zero, 0, 0.3));
+  // A normal sent away from the sensor is turned towards it.
+  PlaneInput flipped = Wall({3, -1}, {3, 2});
+  flipped.normal = -flipped.normal;
+  flipped.d = -flipped.d;
+  EXPECT_TRUE(MakeObservation(flipped, 0, 0.3)->normal.isApprox(Vector2d(-1, 0)));
+}
+
+TEST(Registration, MatchesTheSameWallNotItsCollinearNeighbour) {
+  RegistrationOptions options;
+  const Observation last = *MakeObservation(Wall({3, -1}, {3, 1}), 10, 0.3);
+  // Moved 3 cm closer: the same wall.
+  const Observation same = *MakeObservation(Wall({2.97, -1}, {2.97, 1}), 11, 0.3);
+  EXPECT_GT(MatchScore(last, same, options), 0.0);
+  // A collinear wall beside it (a door between) must not match: no overlap.
+  const Observation beside = *MakeObservation(Wall({2.97, 2}, {2.97, 4}), 11, 0.3);
+  EXPECT_LT(MatchScore(last, beside, options), 0.0);
+  // Seen too long ago.
+  const Observation late = *MakeObservation(Wall({2.97, -1}, {2.97, 1}), 10 + 20, 0.3);
+  EXPECT_LT(MatchScore(last, late, options), 0.0);
+  // Another orientation.
+  const Observation turned = *MakeObservation(Wall({2, -1}, {4, 1}), 11, 0.3);
+  EXPECT_LT(MatchScore(last, turned, options), 0.0);
+}
+
+TEST(Grouping, CovisiblePlanesShareAGroupAndANewPlaneLinksToThePrevious) {
+  MapperOptions options;
+  MapperState state;
+  auto add = [&](int64_t id, int64_t k, Vector2d a, Vector2d b) {
+    Observation o = *MakeObservation(Wall(a, b), k, 0.3);
+    if (!state.planes.count(id)) {
+      state.planes.emplace(id, RltPlane(id, o, 0.05, 1000));
+      state.ungrouped.push_back(id);
+    } else {
+      state.planes.at(id).Add(o);
+    }
+  };
+  // Planes 0 and 1 seen from iteration 0, plane 2 from iteration 30 while 0 has left.
+  for (int64_t k = 0; k < 60; ++k) {
+    std::vector<int64_t> visible = {1};
+    if (k < 25) add(0, k, {2, -1}, {2, 1}), visible.push_back(0);
+    add(1, k, {1, 1}, {5, 1});
+    if (k >= 30) add(2, k, {4, -1}, {4, -2}), visible.push_back(2);
+    UpdateGroups(state, visible, k, options.grouping);
+  }
+  ASSERT_EQ(state.groups.size(), 2u);
+  EXPECT_EQ(state.groups[0].members, (std::vector<int64_t>{0, 1}));
+  // The second group holds the new plane and the link plane 1 from the first group.
+  EXPECT_EQ(state.groups[1].members, (std::vector<int64_t>{2, 1}));
+  EXPECT_TRUE(state.ungrouped.empty());
+}
+
+TEST(Grouping, ShortLivedPlanesTimeOut) {
+  MapperOptions options;
+  MapperState state;
+  state.planes.emplace(5, RltPlane(5, *MakeObservation(Wall({2, -1}, {2, 1}), 0, 0.3), 0.05, 100));
+  state.ungrouped.push_back(5);
+  for (int64_t k = 1; k < 60; ++k) UpdateGroups(state, {}, k, options.grouping);
+  EXPECT_TRUE(state.planes.empty());
+  EXPECT_TRUE(state.ungrouped.empty());
+}
+
+TEST(Localisation, TwoWallsGiveThePoseOneWallTheMotionModel) {
+  // Map: wall x = 4 (frame angle pi/2, normal -x... as seen) and wall y = 1.
+  RltPlane a(0, *MakeObservation(Wall({4, -1}, {4, 1}), 0, 0.3), 0.05, 100);
+  RltPlane b(1, *MakeObservation(Wall({0, 1}, {4, 1}), 0, 0.3), 0.05, 100);
+  const geometry::Pose2 truth{1.0, -0.5, 0.1};
+  const geometry::Pose2 inv = truth.Inverse();
+  a.Add(*MakeObservation(Wall(inv * Vector2d(4, -1), inv * Vector2d(4, 1)), 1, 0.3));
+  b.Add(*MakeObservation(Wall(inv * Vector2d(0, 1), inv * Vector2d(4, 1)), 1, 0.3));
+  Placement pa, pb;
+  pa.alpha = a.Observations().front().Alpha();
+  pa.point = {4, -1};
+  pa.known = Known::kLine;
+  pb.alpha = b.Observations().front().Alpha();
+  pb.point = {0, 1};
+  pb.known = Known::kLine;
+  LearnedFrustum frustum;
+  LocalisationOptions options;
+  const geometry::Pose2 previous{0.9, -0.4, 0.05};
+  PoseEstimate est = Localise({{&a.Latest(), &a, pa}, {&b.Latest(), &b, pb}}, previous, frustum,
+                              options);
+  EXPECT_EQ(est.status, PoseStatus::kTracking);
+  EXPECT_NEAR(est.pose.x, truth.x, 1e-6);
+  EXPECT_NEAR(est.pose.y, truth.y, 1e-6);
+  EXPECT_NEAR(est.pose.yaw, truth.yaw, 1e-9);
+  // One wall: its distance and the orientation are kept, the rest from the previous pose.
+  est = Localise({{&a.Latest(), &a, pa}}, previous, frustum, options);
+  EXPECT_EQ(est.status, PoseStatus::kMotionModel);
+  EXPECT_NEAR(est.pose.yaw, truth.yaw, 1e-9);
+  EXPECT_NEAR(est.pose.x, truth.x, 1e-3);  // wall x = 4 fixes x
+  EXPECT_NEAR(est.pose.y, previous.y, 1e-3);
+  EXPECT_EQ(Localise({}, previous, frustum, options).status, PoseStatus::kLost);
+}
+
+TEST(Mapper, PlaneLeavingAndReenteringIsTheSameRltplane) {
+  // A hallway with doors driven out, back, out and back: the walls seen on the way out are
+  // matched again afterwards (backtracking, §II.A end), so the later laps add no rltplane.
+  using testing::Drive;
+  testing::IdealSegmenter segmenter(testing::HallwayWithDoors(10.0), {});
+  Mapper mapper;
+  const auto route = Drive({{0, 0}, {5, 0}, {0.5, 0}, {5, 0}}, 1.0, 0.8);
+  const size_t half = route.size() / 2;
+  size_t planes_after_first = 0;
+  double worst = 0.0;
+  for (size_t k = 0; k < route.size(); ++k) {
+    const PoseEstimate est = mapper.Process(static_cast<int64_t>(k), segmenter.Planes(route[k]));
+    worst = std::max(worst, (est.pose.Translation() - route[k].Translation()).norm());
+    if (k == half) planes_after_first = mapper.State().planes.size();
+  }
+  EXPECT_LT(worst, 0.02);
+  EXPECT_EQ(mapper.State().planes.size(), planes_after_first);
+}
+
+TEST(Mapper, RepeatedOrOldIterationsAreIgnored) {
+  Mapper mapper;
+  mapper.Process(5, {Wall({3, -1}, {3, 1})});
+  const PoseEstimate est = mapper.Process(5, {Wall({3, -1}, {3, 1})});
+  EXPECT_EQ(est.status, PoseStatus::kLost);
+  EXPECT_EQ(mapper.State().planes.at(0).Count(), 1);
+}
+
+}  // namespace
+}  // namespace relplane::mapper
