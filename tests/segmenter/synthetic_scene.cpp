@@ -131,7 +131,8 @@ Score Evaluate(const std::vector<DetectedPlane>& planes, const std::vector<Rect>
     Eigen::Vector3d n;
     double d;
     TruePlane(world[k], sensor.world_from_sensor, &n, &d);
-    *angle = std::acos(std::clamp(n.dot(p.normal.cast<double>()), -1.0, 1.0)) * 180.0 / M_PI;
+    const Eigen::Vector3d pn = p.normal.cast<double>();
+    *angle = std::atan2(n.cross(pn).norm(), n.dot(pn)) * 180.0 / M_PI;  // exact near 0
     *offset = std::fabs(d - p.d);
     const Eigen::Vector3d c = sensor.world_from_sensor * p.centroid.cast<double>();
     return *angle < 5.0 && *offset < 0.1 && OnRect(world[k], c, 0.2);

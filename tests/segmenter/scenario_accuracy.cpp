@@ -1,0 +1,118 @@
+#include "scenario_accuracy.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "options_yaml.hpp"  // services/sim: the scenario's `sim` section
+#include "relplane/segmenter/segmenter.hpp"
+#include "relplane/sim/simulation.hpp"
+
+namespace relplane::segmenter::testing {
+namespace {
+
+constexpr int kMinPoints = 300;
+constexpr double kMaxAngleDeg = 5.0;
+constexpr double kMaxOffset = 0.1;
+constexpr double kMargin = 0.05;  // overlaps must be deeper than this
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// Whether the detection's extent (world frame) overlaps the rectangle: a wall with a door and
+// a lintel is one connected surface, seen as one plane that covers three true rectangles.
+bool Overlaps(const sim::TruePlane& t, const std::vector<Eigen::Vector3d>& extent) {
+  if (extent.empty()) return false;
+  const Eigen::Vector3d u = (t.corners[1] - t.corners[0]).normalized();
+  const Eigen::Vector3d v = (t.corners[3] - t.corners[0]).normalized();
+  const double lu = (t.corners[1] - t.corners[0]).norm();
+  const double lv = (t.corners[3] - t.corners[0]).norm();
+  double s_lo = 1e9, s_hi = -1e9, r_lo = 1e9, r_hi = -1e9;
+  for (const auto& p : extent) {
+    const double s = (p - t.corners[0]).dot(u), r = (p - t.corners[0]).dot(v);
+    s_lo = std::min(s_lo, s);
+    s_hi = std::max(s_hi, s);
+    r_lo = std::min(r_lo, r);
+    r_hi = std::max(r_hi, r);
+  }
+  return s_hi > kMargin && s_lo < lu - kMargin && r_hi > kMargin && r_lo < lv - kMargin;
+}
+
+// Angle (degrees) and offset between a detection (sensor frame) and a true plane (world
+// frame); true when they match.
+bool Match(const DetectedPlane& p, const sim::TruePlane& t, const Eigen::Isometry3d& pose,
+           double* angle, double* offset) {
+  const Eigen::Vector3d n_world = pose.rotation() * p.normal.cast<double>();
+  const Eigen::Vector3d c_world = pose * p.centroid.cast<double>();
+  std::vector<Eigen::Vector3d> extent;
+  for (const auto& v : p.vertices) extent.push_back(pose * v.cast<double>());
+  const double d_world = -n_world.dot(c_world);
+  // Compare in the sensor frame: the true plane's normal oriented like the detection.
+  Eigen::Vector3d tn = t.normal;
+  double td = t.d;
+  if (tn.dot(n_world) < 0) {
+    tn = -tn;
+    td = -td;
+  }
+  // atan2 of sine and cosine: acos loses angles below ~0.01 degrees to rounding.
+  *angle = std::atan2(tn.cross(n_world).norm(), tn.dot(n_world)) * 180.0 / M_PI;
+  // The offset seen from the sensor: distance of the sensor to each plane.
+  const Eigen::Vector3d o = pose.translation();
+  *offset = std::fabs((tn.dot(o) + td) - (n_world.dot(o) + d_world));
+  return *angle < kMaxAngleDeg && *offset < kMaxOffset && Overlaps(t, extent);
+}
+
+}  // namespace
+
+ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_sigma, int step) {
+  sim::ServiceOptions options = sim::LoadServiceOptions(scenario_file);
+  options.sim.sensor.noise_sigma = noise_sigma;
+  sim::Simulation simulation(options.sim);
+  const std::vector<sim::TruePlane> truth = simulation.TruePlanes();
+  Segmenter segmenter;
+  ScenarioAccuracy acc;
+  std::vector<double> angles, offsets;
+  for (int64_t k = 0; k < simulation.NumIterations(); k += step) {
+    const sim::Scan scan = simulation.Frame(k);
+    const Eigen::Isometry3d pose = simulation.SensorPose(k);
+    Cloud cloud;
+    cloud.Reserve(scan.points.size());
+    for (const auto& p : scan.points) cloud.Add(p);
+    const Result result = segmenter.Segment(cloud);
+    ++acc.frames;
+    acc.detected += static_cast<int>(result.planes.size());
+    for (const auto& p : result.planes) {
+      double a, o;
+      for (const auto& t : truth) {
+        if (Match(p, t, pose, &a, &o)) {
+          ++acc.correct;
+          break;
+        }
+      }
+    }
+    std::vector<int> hits(truth.size(), 0);
+    for (int r : scan.rects) {
+      if (r >= 0 && r < static_cast<int>(hits.size())) ++hits[r];
+    }
+    for (size_t t = 0; t < truth.size(); ++t) {
+      if (hits[t] < kMinPoints) continue;
+      ++acc.true_planes;
+      for (const auto& p : result.planes) {  // decreasing support: the best-supported match
+        double a, o;
+        if (Match(p, truth[t], pose, &a, &o)) {
+          ++acc.recalled;
+          angles.push_back(a);
+          offsets.push_back(o);
+          break;
+        }
+      }
+    }
+  }
+  acc.median_angle_deg = Median(angles);
+  acc.median_offset_m = Median(offsets);
+  return acc;
+}
+
+}  // namespace relplane::segmenter::testing

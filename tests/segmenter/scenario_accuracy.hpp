@@ -1,0 +1,25 @@
+#pragma once
+// Segmenter accuracy on the simulator's scenarios (relplane_sim) against the true world:
+// precision and recall of detected planes, normal-angle and offset errors.
+
+#include <string>
+
+namespace relplane::segmenter::testing {
+
+struct ScenarioAccuracy {
+  int frames = 0;
+  int true_planes = 0;  // (frame, rectangle) pairs with at least 300 points in view
+  int recalled = 0;
+  int detected = 0;
+  int correct = 0;  // detections that overlap some true rectangle in its plane
+  double median_angle_deg = 0.0;
+  double median_offset_m = 0.0;
+  double Precision() const { return detected ? static_cast<double>(correct) / detected : 1.0; }
+  double Recall() const { return true_planes ? static_cast<double>(recalled) / true_planes : 1.0; }
+};
+
+// Runs the scenario's simulator (its `sim` section, range noise replaced by `noise_sigma`) and
+// segments every `step`-th frame with one streaming Segmenter with default options.
+ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_sigma, int step);
+
+}  // namespace relplane::segmenter::testing
