@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "background_writer.hpp"
 #include "convert.hpp"
 #include "options_yaml.hpp"
 #include "relplane/common/bus.hpp"
@@ -92,27 +93,30 @@ int main(int argc, char** argv) {
         bus::kDefaultQueueCapacity);
   }
 
-  const auto write = [&] {
-    const int64_t start = MonotonicMicros();
+  // Periodic rewrites run on a copy in the background; the first and the last are synchronous
+  // so the folder is complete from the start and final at the end.
+  const auto write_now = [&] {
     std::string reason;
-    if (!recorder.Write(&reason)) {
-      stats.Rejected("write failed: " + reason);
-      return;
-    }
-    stats.SetDetail("wrote " + out_dir + " in " +
-                    std::to_string((MonotonicMicros() - start) / 1000) + " ms");
+    if (!recorder.Write(&reason)) stats.Rejected("write failed: " + reason);
   };
-  write();  // the folder is complete from the start, even before the first message
+  write_now();
+  logger::BackgroundWriter writer;
   const int64_t period_us = static_cast<int64_t>(cfg.options.flush_period_s * 1e6);
   int64_t next_write = MonotonicMicros() + period_us;
   spdlog::info("recording {} into {}", bus->Url().empty() ? "LCM's default bus" : bus->Url(),
                out_dir);
   const int result = RunService(*bus, stats, {}, [&] {
-    if (MonotonicMicros() < next_write) return;
-    if (recorder.Changed()) write();
+    std::string reason;
+    if (!writer.Collect(&reason)) stats.Rejected("write failed: " + reason);
+    if (MonotonicMicros() < next_write || !recorder.Changed()) return;
+    // Busy with the previous write: try again on the next round.
+    if (!writer.Start(recorder)) return;
+    stats.SetDetail("last write " + std::to_string(static_cast<int>(writer.LastWriteMs())) + " ms");
     next_write = MonotonicMicros() + period_us;
   });
-  write();
+  std::string reason;
+  if (!writer.Finish(&reason)) stats.Rejected("write failed: " + reason);
+  write_now();
   std::cout << eval::FormatSummary(recorder.LastMetrics()) << "  run folder: " << out_dir
             << std::endl;
   return result;

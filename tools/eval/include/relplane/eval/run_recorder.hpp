@@ -32,6 +32,8 @@ class RunRecorder {
 
   // True when something arrived since the last Write().
   bool Changed() const { return changed_; }
+  // For a writer working on a copy: the copy's Write() stands for this recorder's.
+  void ClearChanged() { changed_ = false; }
   RunMetrics Metrics() const;
   // Rewrites every file of the run folder atomically. False with a one-line reason.
   bool Write(std::string* reason);
