@@ -57,7 +57,12 @@ TEST(LoggerProcess, SigkilledLoggerLeavesCompleteFilesAtMostASecondOld) {
   ASSERT_TRUE(WaitForFile(dir + "/metrics.json", 10.0));
   std::unique_ptr<bus::Bus> bus = bus::OpenLcmBus(url);
   PublishRun(*bus, 40);
-  Sleep(1.5);  // one flush period and a margin
+  // Two flush periods: the data, then the logger's first own STATUS (a new row) are written.
+  Sleep(2.5);
+  // Nothing new arrives (only STATUS with unchanged counters): the folder is left alone.
+  const auto written = fs::last_write_time(dir + "/metrics.json");
+  Sleep(1.5);
+  EXPECT_EQ(fs::last_write_time(dir + "/metrics.json"), written);
   logger.Signal(SIGKILL);
   EXPECT_EQ(logger.Wait(10.0), 128 + SIGKILL);
 

@@ -77,9 +77,11 @@ StatusSample FromMessage(const relplane::status_t& msg) {
   s.frames_processed = msg.frames_processed;
   s.frames_dropped = msg.frames_dropped;
   s.inputs_rejected = msg.inputs_rejected;
-  s.p50_ms = msg.p50_ms;
-  s.p99_ms = msg.p99_ms;
-  s.max_ms = msg.max_ms;
+  // float on the wire: round to 0.1 us so 0.01 ms does not print as 0.00999999978.
+  const auto ms = [](float v) { return std::round(static_cast<double>(v) * 1e4) * 1e-4; };
+  s.p50_ms = ms(msg.p50_ms);
+  s.p99_ms = ms(msg.p99_ms);
+  s.max_ms = ms(msg.max_ms);
   s.last_seq = msg.last_seq;
   return s;
 }

@@ -57,8 +57,8 @@ void RunRecorder::OnWorld(MapSnapshot world, int64_t) {
 }
 
 void RunRecorder::OnStatus(const StatusSample& status, int64_t) {
-  timing_.Status(status);
-  changed_ = true;
+  // An idle service repeats its counters every second: that is no reason to rewrite the folder.
+  if (timing_.Status(status)) changed_ = true;
 }
 
 RunMetrics RunRecorder::Metrics() const {

@@ -21,8 +21,12 @@ void TimingRecorder::Arrived(Stage stage, int64_t seq, int64_t receive_us) {
   if (it->second[stage] < 0) it->second[stage] = receive_us;
 }
 
-void TimingRecorder::Status(const StatusSample& status) {
+bool TimingRecorder::Status(const StatusSample& status) {
+  const bool seen = reports_.count(status.service) > 0;
   Reports& r = reports_[status.service];
+  const bool changed = !seen || status.frames_processed != r.last.frames_processed ||
+                       status.frames_dropped != r.last.frames_dropped ||
+                       status.inputs_rejected != r.last.inputs_rejected;
   // A report with nothing processed in its period carries no timing.
   if (status.frames_processed > r.last.frames_processed) {
     r.p50.push_back(status.p50_ms);
@@ -30,6 +34,7 @@ void TimingRecorder::Status(const StatusSample& status) {
     r.max = std::max(r.max, status.max_ms);
   }
   r.last = status;
+  return changed;
 }
 
 TimingMetrics TimingRecorder::Compute() const {

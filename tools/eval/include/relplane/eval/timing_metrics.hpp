@@ -46,7 +46,8 @@ class TimingRecorder {
 
   // The first arrival of `seq` at `stage`, `receive_us` on one host clock.
   void Arrived(Stage stage, int64_t seq, int64_t receive_us);
-  void Status(const StatusSample& status);
+  // Returns true when the report's counters differ from the service's previous report.
+  bool Status(const StatusSample& status);
   TimingMetrics Compute() const;
 
  private:
