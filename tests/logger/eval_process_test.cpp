@@ -1,6 +1,7 @@
 // relplane-eval as a real process on a bus.lcmlog written here with LCM's eventlog API.
 #include <gtest/gtest.h>
 #include <lcm/eventlog.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -38,15 +39,9 @@ class EventLogWriter {
   int64_t count_ = 0;
 };
 
-std::string FreshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("relplane-eval-test-" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
-
 TEST(EvalProcess, ScoresARecordedLogLikeTheLogger) {
-  const std::string dir = FreshDir("log");
+  const ScratchDir scratch("relplane-eval-log");
+  const std::string& dir = scratch.Path();
   {
     EventLogWriter log(dir + "/bus.lcmlog");
     ASSERT_TRUE(log.Ok());
@@ -86,7 +81,8 @@ TEST(EvalProcess, ScoresARecordedLogLikeTheLogger) {
 }
 
 TEST(EvalProcess, MissingOrUnreadableLogIsOneLineAndExitTwo) {
-  const std::string dir = FreshDir("bad");
+  const ScratchDir scratch("relplane-eval-bad");
+  const std::string& dir = scratch.Path();
   std::string out, err;
   EXPECT_EQ(RunProcess({RELPLANE_EVAL_PATH, dir + "/nothing.lcmlog", "--out", dir + "/o"}, 10.0,
                        &out, &err),

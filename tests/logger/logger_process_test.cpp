@@ -1,10 +1,14 @@
 // relplane-logger as a real process on a udpm bus of its own (ports 47140-47149): fed
 // hand-made messages, killed with SIGKILL or stopped with SIGINT, its run folder must parse.
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <signal.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <thread>
 
@@ -20,12 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string Url(int port) { return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0"; }
-
-std::string FreshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("relplane-logger-test-" + name);
-  fs::remove_all(dir);
-  return dir.string();
-}
 
 void Sleep(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
 
@@ -49,7 +47,8 @@ void PublishRun(bus::Bus& bus, int n) {
 }
 
 TEST(LoggerProcess, SigkilledLoggerLeavesCompleteFilesAtMostASecondOld) {
-  const std::string dir = FreshDir("sigkill");
+  const ScratchDir scratch("relplane-logger-sigkill");
+  const std::string dir = scratch / "run";
   const std::string url = Url(47140);
   Process logger({RELPLANE_LOGGER_PATH, "--out", dir, "--lcm-url", url, "--log-level", "warn"},
                  dir + ".out", dir + ".err");
@@ -80,9 +79,10 @@ TEST(LoggerProcess, SigkilledLoggerLeavesCompleteFilesAtMostASecondOld) {
 }
 
 TEST(LoggerProcess, InterruptWritesFinalFilesAndASummaryWithExpectations) {
-  const std::string dir = FreshDir("sigint");
+  const ScratchDir scratch("relplane-logger-sigint");
+  const std::string dir = scratch / "run";
   const std::string url = Url(47141);
-  const std::string scenario = dir + "-scenario.yaml";
+  const std::string scenario = scratch / "scenario.yaml";
   WriteFileForTest(scenario,
                    "name: t\nlogger: {flush_period_s: 5}\n"
                    "expect: {ate_rmse_max_m: 0.01, iterations_min: 20}\n");
@@ -111,7 +111,8 @@ TEST(LoggerProcess, InterruptWritesFinalFilesAndASummaryWithExpectations) {
 }
 
 TEST(LoggerProcess, CheckConfigRefusesAnUnknownExpectKeyInOneLine) {
-  const std::string scenario = FreshDir("check") + "-scenario.yaml";
+  const ScratchDir scratch("relplane-logger-check");
+  const std::string scenario = scratch / "scenario.yaml";
   WriteFileForTest(scenario, "name: t\nexpect:\n  ate_rsme_max_m: 0.05\n");
   std::string out, err;
   EXPECT_EQ(
@@ -128,3 +129,17 @@ TEST(LoggerProcess, CheckConfigRefusesAnUnknownExpectKeyInOneLine) {
 
 }  // namespace
 }  // namespace relplane::testing
+
+// As root, run in a private network namespace with a multicast route on lo, so two copies of
+// this test (two build trees) never hear each other even on the same port; otherwise use the
+// host's network and rely on the port being unique.
+int main(int argc, char** argv) {
+  if (geteuid() == 0 && unshare(CLONE_NEWNET) == 0) {
+    if (std::system("ip link set lo up && ip route add 224.0.0.0/4 dev lo") != 0) {
+      std::fprintf(stderr, "logger_process_test: no multicast route in the private namespace\n");
+      return 1;
+    }
+  }
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -14,6 +14,17 @@
 
 namespace relplane::testing {
 
+ScratchDir::ScratchDir(const std::string& prefix) {
+  std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
+  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed: " + pattern);
+  path_ = pattern;
+}
+
+ScratchDir::~ScratchDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
 Process::Process(const std::vector<std::string>& argv, const std::string& out_file,
                  const std::string& err_file) {
   std::vector<char*> args;

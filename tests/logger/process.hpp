@@ -9,6 +9,18 @@
 
 namespace relplane::testing {
 
+// A fresh folder under the temporary directory, removed with its contents on destruction.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& prefix);
+  ~ScratchDir();
+  const std::string& Path() const { return path_; }
+  std::string operator/(const std::string& name) const { return path_ + "/" + name; }
+
+ private:
+  std::string path_;
+};
+
 class Process {
  public:
   // Starts argv[0] with argv; stdout and stderr go to `out_file` and `err_file`.

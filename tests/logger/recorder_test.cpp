@@ -26,6 +26,7 @@ class RecorderTest : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
+  void TearDown() override { fs::remove_all(dir_); }
 
   template <class M>
   FeedResult Feed(RunRecorder& r, const std::string& channel, const M& msg, int64_t t_us) {
