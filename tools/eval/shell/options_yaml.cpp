@@ -1,5 +1,8 @@
 #include "options_yaml.hpp"
 
+#include <fstream>
+#include <sstream>
+
 #include "relplane/common/options.hpp"
 #include "relplane/eval/expectations.hpp"
 
@@ -45,10 +48,12 @@ std::vector<Expectation> ReadExpect(config::Reader r) {
 }  // namespace
 
 EvalConfig LoadEvalConfig(const std::string& file) {
-  EvalConfig c;
-  c.options = ReadOptions(config::Reader::Load(file, "logger"));
-  c.expect = ReadExpect(config::Reader::Load(file, "expect"));
-  return c;
+  // Read once: the file may be a pipe, and both sections must come from the same text.
+  std::ifstream in(file);
+  if (!in) throw config::ConfigError(file + ": cannot open the file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return ParseEvalConfig(text.str(), file);
 }
 
 EvalConfig ParseEvalConfig(const std::string& yaml, const std::string& name) {
