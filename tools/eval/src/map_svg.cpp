@@ -12,7 +12,7 @@ namespace {
 
 constexpr double kMargin = 30.0;
 constexpr double kTitleHeight = 34.0;
-constexpr double kFooterHeight = 96.0;
+constexpr double kFooterHeight = 120.0;
 constexpr const char* kGroupColors[] = {"#e07b00", "#8e44ad", "#16a085", "#c0392b",
                                         "#2c3e50", "#b8860b", "#d35400", "#7f8c8d"};
 
@@ -93,24 +93,32 @@ std::string Groups(const MapSnapshot& map, const View& view) {
   return lines + marks;
 }
 
+// Two rows: the walls, then group links and trajectories.
 std::string Legend(double y) {
   struct Item {
     const char* style;
     const char* text;
   };
-  const Item items[] = {
-      {"stroke=\"#b0b0b0\" stroke-width=\"6\"", "true wall"},
-      {"stroke=\"#1f5fbf\" stroke-width=\"2.5\"", "mapped wall"},
-      {"stroke=\"#e07b00\" stroke-width=\"1\" stroke-dasharray=\"4 3\"", "plane to group Xk"},
-      {"stroke=\"#2a9d3a\" stroke-width=\"1.5\"", "true trajectory"},
-      {"stroke=\"#d62828\" stroke-width=\"1.5\"", "estimated trajectory"},
+  const Item rows[2][4] = {
+      {{"stroke=\"#b0b0b0\" stroke-width=\"6\"", "true wall"},
+       {"stroke=\"#b0b0b0\" stroke-width=\"1.5\" stroke-dasharray=\"2 2\"",
+        "true wall above/below the sensor"},
+       {"stroke=\"#1f5fbf\" stroke-width=\"2.5\"", "mapped wall"},
+       {"stroke=\"#d81b60\" stroke-width=\"2.5\"", "mapped wall matching no true wall"}},
+      {{"stroke=\"#e07b00\" stroke-width=\"1\" stroke-dasharray=\"4 3\"", "plane to group Xk"},
+       {"stroke=\"#2a9d3a\" stroke-width=\"1.5\"", "true trajectory"},
+       {"stroke=\"#d62828\" stroke-width=\"1.5\"", "estimated trajectory"},
+       {nullptr, nullptr}},
   };
   std::string out;
-  double x = kMargin;
-  for (const Item& item : items) {
-    out += svg::Line(x, y, x + 26, y, item.style);
-    out += svg::Text(x + 32, y + 4, item.text);
-    x += 42 + 7.2 * std::string(item.text).size();
+  for (int row = 0; row < 2; ++row) {
+    double x = kMargin;
+    for (const Item& item : rows[row]) {
+      if (item.text == nullptr) continue;
+      out += svg::Line(x, y + 22 * row, x + 26, y + 22 * row, item.style);
+      out += svg::Text(x + 32, y + 22 * row + 4, item.text);
+      x += 56 + 7.0 * std::string(item.text).size();
+    }
   }
   return out;
 }
@@ -224,9 +232,19 @@ std::string RenderMapSvg(const MapPicture& pic) {
                "true wall above or below the sensor") +
          "</g>\n";
   out += "<g id=\"groups\">\n" + Groups(map, view) + "</g>\n";
+  // Mapped walls that match no true wall stand out (the metrics' spurious planes).
+  std::vector<WallLine> matched, spurious;
+  for (const WallLine& w : mapped_walls) {
+    const bool is_spurious =
+        pic.metrics != nullptr && std::count(pic.metrics->map.spurious_ids.begin(),
+                                             pic.metrics->map.spurious_ids.end(), w.id) > 0;
+    (is_spurious ? spurious : matched).push_back(w);
+  }
   out += "<g id=\"mapped-walls\">\n" +
-         Walls(mapped_walls, view,
-               "stroke=\"#1f5fbf\" stroke-width=\"2.5\" stroke-linecap=\"round\"", "mapped plane") +
+         Walls(matched, view, "stroke=\"#1f5fbf\" stroke-width=\"2.5\" stroke-linecap=\"round\"",
+               "mapped plane") +
+         Walls(spurious, view, "stroke=\"#d81b60\" stroke-width=\"2.5\" stroke-linecap=\"round\"",
+               "mapped plane matching no true wall") +
          "</g>\n";
   out += "<g id=\"trajectories\">\n";
   out += Polyline(truth, view, "stroke=\"#2a9d3a\" stroke-width=\"1.5\"");
@@ -239,9 +257,9 @@ std::string RenderMapSvg(const MapPicture& pic) {
   out += "</g>\n";
 
   const double footer = kTitleHeight + plot_height;
-  out += Legend(footer + 28);
-  out += ScaleBar(view, width - kMargin, footer + 56);
-  if (pic.metrics != nullptr) out += svg::Text(kMargin, footer + 86, Caption(*pic.metrics));
+  out += Legend(footer + 26);
+  out += ScaleBar(view, width - kMargin, footer + 80);
+  if (pic.metrics != nullptr) out += svg::Text(kMargin, footer + 108, Caption(*pic.metrics));
   out += "</svg>\n";
   return out;
 }
