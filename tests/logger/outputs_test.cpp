@@ -129,6 +129,25 @@ TEST(Outputs, MapSvgIsWellFormedWithWallsGroupsTrajectoriesAndLegend) {
   EXPECT_GE(counts["line"], 4 + 3 + 4 + 5 + 3);
 }
 
+TEST(Outputs, MapSvgSetsSpuriousPlanesApart) {
+  const MapSnapshot world = testing::Room();
+  MapSnapshot map = GroupedMap();
+  map.planes.push_back(testing::Wall(30, {1, -1}, {2, 1}));  // diagonal: matches no wall
+  const std::vector<PoseSample> truth = testing::LoopInRoom();
+  RunMetrics metrics;
+  metrics.map = ComputeMapMetrics(world, map, truth, EvalOptions{});
+  ASSERT_EQ(metrics.map.spurious_ids, std::vector<int64_t>{30});
+  MapPicture picture;
+  picture.world = &world;
+  picture.map = &map;
+  picture.truth = &truth;
+  picture.metrics = &metrics;
+  const std::string svg = RenderMapSvg(picture);
+  EXPECT_NE(svg.find("<title>mapped plane matching no true wall 30</title>"), std::string::npos);
+  EXPECT_NE(svg.find("<title>mapped plane 7</title>"), std::string::npos);
+  EXPECT_EQ(svg.find("<title>mapped plane 30</title>"), std::string::npos);
+}
+
 TEST(Outputs, EmptyPicturesAreWellFormedToo) {
   std::string error;
   EXPECT_TRUE(testing::CheckXml(RenderMapSvg(MapPicture{}), &error)) << error;
