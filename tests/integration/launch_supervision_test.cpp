@@ -119,10 +119,11 @@ TEST(LaunchSupervision, SimFinishingEndsTheRunCleanly) {
   WriteSleeper(dir.Path(), "segmenter");
   const std::string run = dir.Path() + "/run";
   std::string output;
-  EXPECT_EQ(RunLauncher({WriteScenario(dir.Path(), "[sim, segmenter]"), "--bin-dir", dir.Path(),
-                         "--out", run, "--lcm-url", url, "--set", "launch.drain_s=0.2"},
-                        30, &output),
-            0)
+  EXPECT_EQ(
+      RunLauncher({"--set", "launch.drain_s=0.2", WriteScenario(dir.Path(), "[sim, segmenter]"),
+                   "--bin-dir", dir.Path(), "--out", run, "--lcm-url", url},
+                  30, &output),
+      0)
       << output;
   EXPECT_TRUE(std::regex_search(
       output,

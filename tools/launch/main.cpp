@@ -203,6 +203,7 @@ int main(int argc, char** argv) {
   app.add_option("--set", request.sets,
                  "Override a scenario value: key.path=value (YAML value; lists as key[N]); "
                  "repeatable")
+      ->allow_extra_args(false)  // one value per --set, so the SCENARIO may follow it
       ->take_all();
   app.add_option("--lcm-url", request.lcm_url, "Bus URL (default: a udpm port unique to the run)");
   app.add_option("--replay", request.replay,
