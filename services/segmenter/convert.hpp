@@ -4,7 +4,6 @@
 
 #include <relplane/plane_set_t.hpp>
 #include <relplane/point_cloud_t.hpp>
-
 #include <string>
 
 #include "relplane/segmenter/cloud.hpp"

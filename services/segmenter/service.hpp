@@ -2,9 +2,8 @@
 // The service around the segmenter: one PLANES message per accepted SENSOR_POINTS cloud; bad
 // input is counted and logged through ServiceStats, never a crash.
 
-#include <relplane/point_cloud_t.hpp>
-
 #include <cstdint>
+#include <relplane/point_cloud_t.hpp>
 
 #include "options_yaml.hpp"
 #include "relplane/common/bus.hpp"

@@ -81,8 +81,7 @@ std::string Header(const TestCloud& c, const std::string& encoding) {
   std::ostringstream h;
   h << "# .PCD v0.7 - written by the test\nVERSION 0.7\nFIELDS rgba x y z\nSIZE 4 4 4 4\n"
     << "TYPE U F F F\nCOUNT 1 1 1 1\nWIDTH " << c.width << "\nHEIGHT " << c.height
-    << "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << c.width * c.height << "\nDATA " << encoding
-    << "\n";
+    << "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << c.width * c.height << "\nDATA " << encoding << "\n";
   return h.str();
 }
 
@@ -98,7 +97,10 @@ std::string Write(const TestCloud& c, const std::string& encoding) {
     std::ostringstream body;
     for (size_t i = 0; i < n; ++i) {
       body << c.rgba[i] << ' ' << c.x[i] << ' ' << c.y[i] << ' ';
-      if (std::isnan(c.z[i])) body << "nan\n"; else body << c.z[i] << '\n';
+      if (std::isnan(c.z[i]))
+        body << "nan\n";
+      else
+        body << c.z[i] << '\n';
     }
     return out + body.str();
   }
@@ -227,8 +229,7 @@ TEST(PcdReader, MalformedFilesGiveOneLineErrorsNamingTheFile) {
 }
 
 TEST(PcdReader, ReadsTheRealKinectFrames) {
-  const PcdCloud c =
-      ReadPcd(RELPLANE_SHARED_DIR "/data/kinect/frame_20121214T142255.814212.pcd");
+  const PcdCloud c = ReadPcd(RELPLANE_SHARED_DIR "/data/kinect/frame_20121214T142255.814212.pcd");
   EXPECT_EQ(c.encoding, "binary_compressed");
   EXPECT_EQ(c.width, 640);
   EXPECT_EQ(c.height, 480);

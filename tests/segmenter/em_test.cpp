@@ -1,13 +1,13 @@
 // EM steps against closed-form least-squares fits (STYLE.md: check math against an independent
 // computation).
 
+#include "relplane/segmenter/em.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <random>
-
-#include "relplane/segmenter/em.hpp"
 
 namespace relplane::segmenter {
 namespace {

@@ -2,11 +2,11 @@
 // sensors (every 10th frame): noise-free <= 0.2 deg and <= 5 mm, sigma = 1 cm <= 1 deg and
 // <= 2 cm, precision and recall >= 0.95.
 
+#include "scenario_accuracy.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
-
-#include "scenario_accuracy.hpp"
 
 namespace relplane::segmenter::testing {
 namespace {

@@ -64,9 +64,7 @@ TEST(Segmenter, OneCentimetreNoiseWithinOneDegreeAndTwoCentimetres) {
   ExpectAccuracy(0.01, 1.0, 0.02);
 }
 
-TEST(Segmenter, TwoCentimetreNoiseStillFindsThePlanes) {
-  ExpectAccuracy(0.02, 2.0, 0.03);
-}
+TEST(Segmenter, TwoCentimetreNoiseStillFindsThePlanes) { ExpectAccuracy(0.02, 2.0, 0.03); }
 
 std::vector<DetectedPlane> PlanesFacing(const std::vector<DetectedPlane>& planes,
                                         const Eigen::Vector3f& normal, float d) {
@@ -187,7 +185,8 @@ TEST(Segmenter, IsDeterministic) {
 }
 
 TEST(ConvexHull, KeepsOnlyTheCornersCounterClockwise) {
-  std::vector<Eigen::Vector2f> pts = {{0, 0}, {2, 0}, {2, 1}, {0, 1}, {1, 0.5f}, {1, 0}, {0.5f, 0.2f}};
+  std::vector<Eigen::Vector2f> pts = {{0, 0},    {2, 0}, {2, 1},      {0, 1},
+                                      {1, 0.5f}, {1, 0}, {0.5f, 0.2f}};
   const auto hull = ConvexHull(pts);
   ASSERT_EQ(hull.size(), 4u);
   float area = 0;

@@ -4,10 +4,10 @@
 #include "service.hpp"
 
 #include <gtest/gtest.h>
-#include <relplane/plane_set_t.hpp>
-#include <relplane/pose_t.hpp>
 
 #include <limits>
+#include <relplane/plane_set_t.hpp>
+#include <relplane/pose_t.hpp>
 
 #include "convert.hpp"
 #include "options_yaml.hpp"
@@ -34,8 +34,7 @@ TEST(ServiceOptions, ReadsItsSectionAndRefusesUnknownOrBadKeys) {
   EXPECT_EQ(FromYaml("segmenter: {}\n").segmenter.min_points, Options{}.min_points);
   EXPECT_THROW(FromYaml("segmenter:\n  sigma_mx: 0.01\n"), config::ConfigError);
   EXPECT_THROW(FromYaml("segmenter:\n  cell_size: -1\n"), config::ConfigError);
-  EXPECT_THROW(FromYaml("segmenter:\n  sigma_min: 0.05\n  sigma_max: 0.01\n"),
-               config::ConfigError);
+  EXPECT_THROW(FromYaml("segmenter:\n  sigma_min: 0.05\n  sigma_max: 0.01\n"), config::ConfigError);
   EXPECT_THROW(FromYaml("segmenter:\n  min_points: many\n"), config::ConfigError);
 }
 
@@ -128,7 +127,7 @@ TEST_F(ServiceOnMemq, OversizeTruncatedAndForeignMessagesAreRejectedAndTheServic
   std::vector<uint8_t> bytes(small.getEncodedSize());
   small.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   bus_->PublishRaw("SENSOR_POINTS", bytes.data(), bytes.size() - 3);  // truncated
-  bus::Publish(*bus_, "SENSOR_POINTS", Message(Cloud{}, 2));  // and a good one after
+  bus::Publish(*bus_, "SENSOR_POINTS", Message(Cloud{}, 2));          // and a good one after
   Drain();
   EXPECT_EQ(service.Stats().Rejected(), 3);
   ASSERT_EQ(planes_.size(), 1u);

@@ -38,10 +38,9 @@ Scan Render(const std::vector<Rect>& world, const Sensor& sensor) {
   const Eigen::Matrix3d rot = sensor.world_from_sensor.rotation();
   for (int r = 0; r < sensor.height; ++r) {
     for (int c = 0; c < sensor.width; ++c) {
-      const Eigen::Vector3d ray_s =
-          Eigen::Vector3d(1.0, -(c + 0.5 - 0.5 * sensor.width) / f,
-                          -(r + 0.5 - 0.5 * sensor.height) / f)
-              .normalized();
+      const Eigen::Vector3d ray_s = Eigen::Vector3d(1.0, -(c + 0.5 - 0.5 * sensor.width) / f,
+                                                    -(r + 0.5 - 0.5 * sensor.height) / f)
+                                        .normalized();
       const Eigen::Vector3d ray = rot * ray_s;
       double best = sensor.max_range;
       int hit = -1;
@@ -85,25 +84,25 @@ Scan RenderUnorganized(const std::vector<Rect>& world, const Sensor& sensor) {
 std::vector<Rect> Hallway() {
   const double l = 12.0, w = 2.0, h = 2.5;
   return {
-      Box({-1, -w / 2, 0}, {l, 0, 0}, {0, w, 0}),         // floor
-      Box({-1, -w / 2, h}, {0, w, 0}, {l, 0, 0}),         // ceiling
-      Box({-1, -w / 2, 0}, {0, 0, h}, {l, 0, 0}),         // right wall (y = -1)
-      Box({-1, w / 2, 0}, {3.5, 0, 0}, {0, 0, h}),        // left wall before the door
-      Box({3.4, w / 2, 0}, {l - 4.4, 0, 0}, {0, 0, h}),   // left wall after a 0.9 m door
-      Box({l - 1, -w / 2, 0}, {0, w, 0}, {0, 0, h}),      // end wall
+      Box({-1, -w / 2, 0}, {l, 0, 0}, {0, w, 0}),        // floor
+      Box({-1, -w / 2, h}, {0, w, 0}, {l, 0, 0}),        // ceiling
+      Box({-1, -w / 2, 0}, {0, 0, h}, {l, 0, 0}),        // right wall (y = -1)
+      Box({-1, w / 2, 0}, {3.5, 0, 0}, {0, 0, h}),       // left wall before the door
+      Box({3.4, w / 2, 0}, {l - 4.4, 0, 0}, {0, 0, h}),  // left wall after a 0.9 m door
+      Box({l - 1, -w / 2, 0}, {0, w, 0}, {0, 0, h}),     // end wall
   };
 }
 
 std::vector<Rect> Office() {
   return {
-      Box({-1, -2.5, 0}, {6, 0, 0}, {0, 5, 0}),      // floor
-      Box({-1, -2.5, 2.6}, {0, 5, 0}, {6, 0, 0}),    // ceiling
-      Box({5, -2.5, 0}, {0, 5, 0}, {0, 0, 2.6}),     // front wall
-      Box({-1, 2.5, 0}, {6, 0, 0}, {0, 0, 2.6}),     // left wall
-      Box({-1, -2.5, 0}, {0, 0, 2.6}, {6, 0, 0}),    // right wall
-      Box({3.0, -0.5, 0}, {0, 1.0, 0}, {0, 0, 0.9}), // cabinet front
+      Box({-1, -2.5, 0}, {6, 0, 0}, {0, 5, 0}),         // floor
+      Box({-1, -2.5, 2.6}, {0, 5, 0}, {6, 0, 0}),       // ceiling
+      Box({5, -2.5, 0}, {0, 5, 0}, {0, 0, 2.6}),        // front wall
+      Box({-1, 2.5, 0}, {6, 0, 0}, {0, 0, 2.6}),        // left wall
+      Box({-1, -2.5, 0}, {0, 0, 2.6}, {6, 0, 0}),       // right wall
+      Box({3.0, -0.5, 0}, {0, 1.0, 0}, {0, 0, 0.9}),    // cabinet front
       Box({3.0, -0.5, 0.9}, {0, 1.0, 0}, {0.8, 0, 0}),  // cabinet top
-      Box({3.0, 0.5, 0}, {0.8, 0, 0}, {0, 0, 0.9}),  // cabinet left side
+      Box({3.0, 0.5, 0}, {0.8, 0, 0}, {0, 0, 0.9}),     // cabinet left side
   };
 }
 

@@ -1,11 +1,11 @@
 // relplane-pcd-play: publishes PCD files in order as SENSOR_POINTS (seq 0, 1, ...), so clouds
 // recorded by other tools can drive the pipeline.
 
-#include <relplane/point_cloud_t.hpp>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <cmath>
+#include <relplane/point_cloud_t.hpp>
 #include <thread>
 
 #include "relplane/common/bus.hpp"
@@ -22,8 +22,8 @@ relplane::point_cloud_t ToMessage(const relplane::pcd::PcdCloud& cloud, bool dro
   // Simulated time, as relplane-sim does: deterministic and independent of the host clock.
   msg.utime = rate_hz > 0 ? static_cast<int64_t>(std::llround(seq * 1e6 / rate_hz)) : seq;
   for (size_t i = 0; i < cloud.size(); ++i) {
-    if (drop_invalid && !(std::isfinite(cloud.x[i]) && std::isfinite(cloud.y[i]) &&
-                          std::isfinite(cloud.z[i]))) {
+    if (drop_invalid &&
+        !(std::isfinite(cloud.x[i]) && std::isfinite(cloud.y[i]) && std::isfinite(cloud.z[i]))) {
       continue;
     }
     msg.x.push_back(cloud.x[i]);
@@ -38,8 +38,9 @@ relplane::point_cloud_t ToMessage(const relplane::pcd::PcdCloud& cloud, bool dro
 
 int main(int argc, char** argv) {
   using namespace relplane;
-  CLI::App app{"relplane-pcd-play: publish PCD files (ascii, binary, binary_compressed) as "
-               "SENSOR_POINTS"};
+  CLI::App app{
+      "relplane-pcd-play: publish PCD files (ascii, binary, binary_compressed) as "
+      "SENSOR_POINTS"};
   cli::CommonFlags flags;
   cli::AddCommonFlags(app, &flags);
   std::vector<std::string> files;
@@ -55,8 +56,7 @@ int main(int argc, char** argv) {
                "the files are in the optical frame (x right, y down, z forward): turn them into "
                "the sensor frame (x forward, y left, z up)");
   app.add_flag("--drop-invalid", drop_invalid, "leave NaN/inf points out of the messages");
-  app.add_option("--loop", loops, "play the file list this many times")
-      ->check(CLI::PositiveNumber);
+  app.add_option("--loop", loops, "play the file list this many times")->check(CLI::PositiveNumber);
   app.add_option("--channel", channel, "channel to publish on");
   if (auto code = cli::Parse(app, argc, argv)) return *code;
   try {

@@ -38,8 +38,13 @@ bool Project(const Eigen::Vector3f& p, double f, double cx, double cy, double* u
 void Panel(std::ostream& svg, const pcd::PcdCloud& pcd, const segmenter::Result& r, double ox,
            const std::string& title, double f) {
   const int w = pcd.width, h = pcd.height;
+  static int panel = 0;
+  const std::string clip = "panel" + std::to_string(panel++);
   svg << "<g transform='translate(" << ox << ",30)'>\n";
+  svg << "<clipPath id='" << clip << "'><rect width='" << w << "' height='" << h
+      << "'/></clipPath>\n";
   svg << "<text x='0' y='-10' font-size='14'>" << title << "</text>\n";
+  svg << "<g shape-rendering='crispEdges'>\n";
   // Label per block: the most common label of its pixels.
   for (int by = 0; by < h / kBlock; ++by) {
     int run_start = 0;
@@ -72,6 +77,7 @@ void Panel(std::ostream& svg, const pcd::PcdCloud& pcd, const segmenter::Result&
       }
     }
   }
+  svg << "</g>\n<g clip-path='url(#" << clip << ")'>\n";  // outlines may leave the image
   for (size_t k = 0; k < r.planes.size(); ++k) {
     const auto& p = r.planes[k];
     std::ostringstream pts;
@@ -86,6 +92,10 @@ void Panel(std::ostream& svg, const pcd::PcdCloud& pcd, const segmenter::Result&
           << "stroke-width='2.5'/>\n<polygon points='" << pts.str() << "' fill='none' stroke='"
           << Colour(static_cast<int>(k)) << "' stroke-width='1.2'/>\n";
     }
+  }
+  svg << "</g>\n";
+  for (size_t k = 0; k < r.planes.size(); ++k) {
+    const auto& p = r.planes[k];
     char line[200];
     std::snprintf(line, sizeof line, "n=(%.2f, %.2f, %.2f) d=%.2f m, %d pts, rms %.1f mm",
                   p.normal.x(), p.normal.y(), p.normal.z(), p.d, p.num_points, p.rms * 1000);
@@ -94,6 +104,63 @@ void Panel(std::ostream& svg, const pcd::PcdCloud& pcd, const segmenter::Result&
         << "' font-size='12'>" << line << "</text>\n";
   }
   svg << "</g>\n";
+}
+
+// The same picture as a raster (binary PPM, one pixel per point): panels side by side, the
+// extent outlines drawn in white over the labels.
+class Raster {
+ public:
+  Raster(int width, int height) : w_(width), h_(height), rgb_(3 * width * height, 255) {}
+  void Set(int x, int y, const char* hex) {
+    if (x < 0 || y < 0 || x >= w_ || y >= h_) return;
+    for (int c = 0; c < 3; ++c) {
+      rgb_[3 * (y * w_ + x) + c] =
+          static_cast<uint8_t>(std::stoi(std::string(hex + 1 + 2 * c, 2), nullptr, 16));
+    }
+  }
+  void Line(double x0, double y0, double x1, double y1, int xmin, int xmax, const char* hex) {
+    const int steps =
+        static_cast<int>(std::min(4000.0, std::max(std::fabs(x1 - x0), std::fabs(y1 - y0))) + 1);
+    for (int i = 0; i <= steps; ++i) {
+      const double t = static_cast<double>(i) / steps;
+      const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0)));
+      const int y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
+      if (x < xmin || x >= xmax) continue;
+      for (int d = -1; d <= 1; ++d) Set(x + d, y, hex), Set(x, y + d, hex);
+    }
+  }
+  bool Write(const std::string& path) const {
+    std::ofstream out(path, std::ios::binary);
+    out << "P6\n" << w_ << " " << h_ << "\n255\n";
+    out.write(reinterpret_cast<const char*>(rgb_.data()),
+              static_cast<std::streamsize>(rgb_.size()));
+    return static_cast<bool>(out);
+  }
+
+ private:
+  int w_, h_;
+  std::vector<uint8_t> rgb_;
+};
+
+void Draw(Raster* raster, const pcd::PcdCloud& pcd, const segmenter::Result& r, int ox, double f) {
+  for (int y = 0; y < pcd.height; ++y) {
+    for (int x = 0; x < pcd.width; ++x) {
+      const size_t i = static_cast<size_t>(y) * pcd.width + x;
+      raster->Set(ox + x, y, std::isfinite(pcd.x[i]) ? Colour(r.labels[i]) : "#000000");
+    }
+  }
+  for (const auto& p : r.planes) {
+    for (size_t k = 0; k < p.vertices.size(); ++k) {
+      double u0, v0, u1, v1;
+      const auto& a = p.vertices[k];
+      const auto& b = p.vertices[(k + 1) % p.vertices.size()];
+      if (!Project(a, f, pcd.width / 2.0, pcd.height / 2.0, &u0, &v0) ||
+          !Project(b, f, pcd.width / 2.0, pcd.height / 2.0, &u1, &v1)) {
+        continue;
+      }
+      raster->Line(ox + u0, v0, ox + u1, v1, ox, ox + pcd.width, "#ffffff");
+    }
+  }
 }
 
 }  // namespace
@@ -109,6 +176,8 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "YAML file with a `segmenter` section");
   app.add_flag("--optical", optical, "the files are in the optical frame");
   app.add_option("--focal", focal, "focal length in pixels, for the extent outlines");
+  std::string ppm;
+  app.add_option("--ppm", ppm, "also write the picture as a PPM raster, one pixel per point");
   if (auto code = cli::Parse(app, argc, argv)) return *code;
   segmenter::ServiceOptions options;
   try {
@@ -120,6 +189,7 @@ int main(int argc, char** argv) {
   options.segmenter.keep_labels = true;
   segmenter::Segmenter seg(options.segmenter);
   std::ostringstream body;
+  std::vector<std::pair<pcd::PcdCloud, segmenter::Result>> frames;
   double x = 10, width = 0, height = 0;
   for (const auto& file : files) {
     pcd::PcdCloud pcd;
@@ -142,8 +212,17 @@ int main(int argc, char** argv) {
     const std::string name = file.substr(file.find_last_of('/') + 1);
     Panel(body, pcd, r, x, name + ": " + std::to_string(r.planes.size()) + " planes", focal);
     x += pcd.width + 20;
+    if (!ppm.empty()) frames.emplace_back(std::move(pcd), r);
     width = x;
     height = std::max(height, pcd.height + 60.0 + 16.0 * r.planes.size());
+  }
+  if (!ppm.empty() && !frames.empty()) {
+    const int fw = frames[0].first.width, fh = frames[0].first.height;
+    Raster raster(static_cast<int>(frames.size()) * (fw + 20) - 20, fh);
+    for (size_t k = 0; k < frames.size(); ++k) {
+      Draw(&raster, frames[k].first, frames[k].second, static_cast<int>(k) * (fw + 20), focal);
+    }
+    if (!raster.Write(ppm)) return 1;
   }
   std::ofstream svg(out);
   svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height

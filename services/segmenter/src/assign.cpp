@@ -81,8 +81,8 @@ std::vector<int32_t> AssignPoints(const Cloud& cloud, const std::vector<EmPlane>
   std::vector<float> score(n);
   for (size_t j = 0; j < planes.size(); ++j) {
     Scores(cloud, planes[j], t2, q.empty() ? nullptr : q.data(), score.data());
-    Rank(n, score.data(), static_cast<int32_t>(j), r.best.data(), r.second.data(),
-         r.label.data(), r.second_label.data());
+    Rank(n, score.data(), static_cast<int32_t>(j), r.best.data(), r.second.data(), r.label.data(),
+         r.second_label.data());
   }
   if (ambiguous) {
     // Only planes that cross count: near-parallel neighbours (a box lid just above the floor)

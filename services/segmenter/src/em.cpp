@@ -20,7 +20,8 @@ std::vector<float> RangeVariance(const Cloud& points, float range_noise) {
   if (range_noise <= 0.0f) return q;
   const float k2 = range_noise * range_noise;
   for (size_t i = 0; i < points.size(); ++i) {
-    const float r2 = points.x[i] * points.x[i] + points.y[i] * points.y[i] + points.z[i] * points.z[i];
+    const float r2 =
+        points.x[i] * points.x[i] + points.y[i] * points.y[i] + points.z[i] * points.z[i];
     q[i] = k2 * r2 * r2;
   }
   return q;
@@ -114,8 +115,8 @@ void MStep(const Cloud& points, const Responsibilities& resp, const Options& opt
     plane.centroid = mean.cast<float>();
     // sum(w d^2) / sum(r) estimates sigma^2 once range noise is normalised out.
     const double variance = std::max(0.0, eig.eigenvalues()(0)) / support;
-    plane.sigma = std::clamp(static_cast<float>(std::sqrt(variance)), options.sigma_min,
-                             options.sigma_max);
+    plane.sigma =
+        std::clamp(static_cast<float>(std::sqrt(variance)), options.sigma_min, options.sigma_max);
   }
 }
 

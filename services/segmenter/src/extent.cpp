@@ -248,7 +248,9 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
     if (!p.kept) continue;
     global[i] = static_cast<int32_t>(out->size());
     TrimmedRefit(&p);
-    auto lift = [&p](float pa, float pb) { return Eigen::Vector3f(p.out.centroid + pa * p.u + pb * p.v); };
+    auto lift = [&p](float pa, float pb) {
+      return Eigen::Vector3f(p.out.centroid + pa * p.u + pb * p.v);
+    };
     if (p.vertical) {
       p.out.vertices = {lift(p.a_min, p.b_min), lift(p.a_max, p.b_min), lift(p.a_max, p.b_max),
                         lift(p.a_min, p.b_max)};

@@ -57,8 +57,7 @@ void Absorb(const PieceStats& b, const Options& options, PieceStats* a) {
   const Eigen::Vector3d ca = a->plane.centroid.cast<double>();
   const Eigen::Vector3d cb = b.plane.centroid.cast<double>();
   const Eigen::Vector3d c = (na * ca + nb * cb) / n;
-  const Eigen::Matrix3d scatter = a->scatter + b.scatter +
-                                  na * (ca - c) * (ca - c).transpose() +
+  const Eigen::Matrix3d scatter = a->scatter + b.scatter + na * (ca - c) * (ca - c).transpose() +
                                   nb * (cb - c) * (cb - c).transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(scatter);
@@ -142,8 +141,7 @@ float ConvexPolygonDistance(const std::vector<Eigen::Vector2f>& a,
   return best;
 }
 
-std::vector<PieceStats> MergeTouchingPieces(std::vector<PieceStats> pieces,
-                                            const Options& options,
+std::vector<PieceStats> MergeTouchingPieces(std::vector<PieceStats> pieces, const Options& options,
                                             std::vector<int32_t>* merged_into) {
   const size_t n = pieces.size();
   std::vector<int32_t> owner(n);

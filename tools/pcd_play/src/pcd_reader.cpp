@@ -202,8 +202,8 @@ void ReadBinary(const uint8_t* data, size_t size, const Header& h, const std::st
                 PcdCloud* c) {
   const size_t need = h.point_bytes * static_cast<size_t>(h.points);
   if (size < need) {
-    Fail(name, "binary data has " + std::to_string(size) + " bytes, expected " +
-                   std::to_string(need));
+    Fail(name,
+         "binary data has " + std::to_string(size) + " bytes, expected " + std::to_string(need));
   }
   const Field* f[3] = {&FieldNamed(h, "x"), &FieldNamed(h, "y"), &FieldNamed(h, "z")};
   std::vector<float>* out[3] = {&c->x, &c->y, &c->z};

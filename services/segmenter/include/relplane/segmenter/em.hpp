@@ -17,7 +17,7 @@ struct EmPlane {
   float d = 0.0f;
   float sigma = 0.01f;
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  // weighted mean of its support
-  float support = 0.0f;                                 // sum of responsibilities
+  float support = 0.0f;                                // sum of responsibilities
 };
 
 // Responsibilities of K planes and the outlier class for n points, plane-major:
@@ -28,7 +28,9 @@ struct Responsibilities {
   std::vector<float> r;
   std::vector<float> range_variance;  // per point: (range_noise * range^2)^2
 
-  float At(int plane, int point) const { return r[static_cast<size_t>(plane) * num_points + point]; }
+  float At(int plane, int point) const {
+    return r[static_cast<size_t>(plane) * num_points + point];
+  }
   float Outlier(int point) const { return At(num_planes, point); }
 };
 

@@ -17,13 +17,12 @@ struct PieceStats {
   bool vertical = false;
 };
 
-// Merges pieces whose planes agree (normals within options.piece_merge_angle_deg, each centroid within
-// options.merge_distance of the other plane) and whose extents touch (within cell_reach cells).
-// EM keeps such surfaces apart when the data bend slightly (a depth camera's distortion puts a
-// strip of floor 1-2 cm off the rest); pieces split by a gap (a door) do not touch and stay
+// Merges pieces whose planes agree (normals within options.piece_merge_angle_deg, each centroid
+// within options.merge_distance of the other plane) and whose extents touch (within cell_reach
+// cells). EM keeps such surfaces apart when the data bend slightly (a depth camera's distortion
+// puts a strip of floor 1-2 cm off the rest); pieces split by a gap (a door) do not touch and stay
 // apart. `merged_into[k]` receives the index of the piece k ended up in.
-std::vector<PieceStats> MergeTouchingPieces(std::vector<PieceStats> pieces,
-                                            const Options& options,
+std::vector<PieceStats> MergeTouchingPieces(std::vector<PieceStats> pieces, const Options& options,
                                             std::vector<int32_t>* merged_into);
 
 // Distance between two convex polygons (0 when they overlap).

@@ -27,16 +27,16 @@ struct Options {
   int em_points_min = 2000;
   int em_points_max = 5000;
   int em_fraction = 60;
-  int em_iterations = 8;       // E/M iterations per round (fewer once converged)
-  int max_rounds = 6;          // rounds of EM + add/merge/prune
-  int max_planes = 24;         // mixture components at most
-  float converged_angle = 1e-4f;  // radians: a plane moving less has converged
-  float converged_offset = 1e-4f; // metres
+  int em_iterations = 8;           // E/M iterations per round (fewer once converged)
+  int max_rounds = 6;              // rounds of EM + add/merge/prune
+  int max_planes = 24;             // mixture components at most
+  float converged_angle = 1e-4f;   // radians: a plane moving less has converged
+  float converged_offset = 1e-4f;  // metres
 
   // --- Proposals on unexplained points ---
-  int proposal_trials = 40;      // local neighbourhoods tried per proposal
-  int proposal_neighbours = 30;   // a trial fits the seed point's nearest unexplained points
-  float proposal_radius = 0.5f;   // metres, at most this far from the seed
+  int proposal_trials = 40;        // local neighbourhoods tried per proposal
+  int proposal_neighbours = 30;    // a trial fits the seed point's nearest unexplained points
+  float proposal_radius = 0.5f;    // metres, at most this far from the seed
   float proposal_max_rms = 0.03f;  // metres, a neighbourhood flatter than this may seed a plane
   int max_proposals_per_round = 4;
 
@@ -47,18 +47,18 @@ struct Options {
   // centroids within merge_distance): lets a depth camera's few-degree bend at the image edge
   // stay part of the floor.
   float piece_merge_angle_deg = 6.0f;
-  int min_em_points = 12;        // EM support (sum of responsibilities) below this is pruned
+  int min_em_points = 12;  // EM support (sum of responsibilities) below this is pruned
 
   // --- Assignment of all points and extent ---
-  float inlier_sigmas = 3.0f;   // a point supports its nearest plane within this many sigma
-  int min_points = 150;         // pieces with fewer supporting points are dropped
-  float cell_size = 0.1f;       // metres, occupancy grid in the plane for connected pieces
-  int cell_reach = 2;           // cells: occupied cells this close are connected
-  int max_cells = 250000;       // the grid coarsens beyond this many cells per plane
-  float vertical_max_nz = 0.1f; // |normal.z| below this is a vertical plane: rectangle extent
+  float inlier_sigmas = 3.0f;    // a point supports its nearest plane within this many sigma
+  int min_points = 150;          // pieces with fewer supporting points are dropped
+  float cell_size = 0.1f;        // metres, occupancy grid in the plane for connected pieces
+  int cell_reach = 2;            // cells: occupied cells this close are connected
+  int max_cells = 250000;        // the grid coarsens beyond this many cells per plane
+  float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
 
   bool keep_labels = false;  // fill Result::labels (pictures, tests)
-  uint32_t seed = 1;  // proposals' random choices; fixed per frame for determinism
+  uint32_t seed = 1;         // proposals' random choices; fixed per frame for determinism
 };
 
 }  // namespace relplane::segmenter

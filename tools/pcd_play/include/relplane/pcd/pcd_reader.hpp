@@ -16,8 +16,8 @@ class PcdError : public std::runtime_error {
 };
 
 struct PcdCloud {
-  int width = 0;   // points per row (= points for an unorganized cloud)
-  int height = 0;  // rows (1 for an unorganized cloud)
+  int width = 0;         // points per row (= points for an unorganized cloud)
+  int height = 0;        // rows (1 for an unorganized cloud)
   std::string encoding;  // "ascii", "binary" or "binary_compressed"
   // Coordinates in the file's own frame, row-major; invalid points stay NaN.
   std::vector<float> x, y, z;
