@@ -83,36 +83,48 @@ RelativeMap BuildRelativeMap(const Group& group, MapperState& state) {
 
   // Prim's algorithm over static pairings: repeatedly attach the unplaced member with the
   // strongest static pairing to a member placed with a point.
-  while (true) {
-    double best_w = 0.0;
-    int64_t best_from = -1, best_to = -1;
-    int best_j = -1;
-    Vector2d best_delta = Vector2d::Zero();
-    for (const auto& [from, p] : map.members) {
-      if (p.known != Known::kPoint) continue;
-      const RltPlane& a = *state.Plane(from);
-      for (int64_t to : members) {
-        auto it = map.members.find(to);
-        if (it != map.members.end() && it->second.known == Known::kPoint) continue;
-        const Comparison* c = state.FindComparison(from, to);
-        if (c == nullptr) continue;
-        int j = -1;
-        Vector2d delta = Vector2d::Zero();
-        double w = 0.0;
-        if (PairThrough(*c, a, p.ref, &j, &delta, &w) && w > best_w) {
-          best_w = w, best_from = from, best_to = to, best_j = j, best_delta = delta;
-        }
+  struct Candidate {
+    double weight = 0.0;
+    int64_t from = -1;
+    int j = -1;
+    Vector2d delta = Vector2d::Zero();
+  };
+  std::map<int64_t, Candidate> candidates;
+  auto relax = [&](int64_t from) {
+    const Placement& p = map.members[from];
+    if (p.known != Known::kPoint) return;
+    const RltPlane& a = *state.Plane(from);
+    for (int64_t to : members) {
+      if (map.members.count(to)) continue;
+      const Comparison* c = state.FindComparison(from, to);
+      if (c == nullptr) continue;
+      Candidate cand;
+      cand.from = from;
+      if (PairThrough(*c, a, p.ref, &cand.j, &cand.delta, &cand.weight) &&
+          cand.weight > candidates[to].weight) {
+        candidates[to] = cand;
       }
     }
-    if (best_to < 0) break;
-    const Placement& from = map.members[best_from];
-    const Comparison& c = *state.FindComparison(best_from, best_to);
+  };
+  relax(map.basis);
+  while (true) {
+    int64_t to = -1;
+    double weight = 0.0;
+    for (const auto& [id, cand] : candidates) {
+      if (cand.weight > weight && !map.members.count(id)) to = id, weight = cand.weight;
+    }
+    if (to < 0) break;
+    const Candidate cand = candidates[to];
+    const Placement& from = map.members[cand.from];
+    const Comparison& c = *state.FindComparison(cand.from, to);
     Placement q;
-    q.alpha = from.alpha + c.DeltaAlpha(best_from);
-    q.point = from.point + Rot(from.alpha) * best_delta;
-    q.ref = best_j;
+    q.alpha = from.alpha + c.DeltaAlpha(cand.from);
+    q.point = from.point + Rot(from.alpha) * cand.delta;
+    q.ref = cand.j;
     q.known = Known::kPoint;
-    map.members[best_to] = q;
+    map.members[to] = q;
+    candidates.erase(to);
+    relax(to);
   }
   // Lines: a member whose line is steady relative to a placed edge (or parallel to a placed
   // line) is placed on that line.

@@ -77,7 +77,24 @@ int64_t RltPlane::PhaseAt(int64_t iteration) const {
   return *(it - 1);
 }
 
-double RltPlane::Length() const { return full_length_ > 0.0 ? full_length_ : max_length_; }
+double RltPlane::Length() const {
+  if (full_ranges_.empty()) return max_length_;
+  if (full_dirty_) {
+    // Mean visible length while seen whole: unbiased, unlike the maximum, under noise.
+    double sum = 0.0;
+    int n = 0;
+    for (auto r = full_ranges_.rbegin(); r != full_ranges_.rend() && n < 300; ++r) {
+      for (size_t i = LowerBound(r->first); i < observations_.size() && n < 300; ++i) {
+        if (observations_[i].iteration > r->second) break;
+        sum += observations_[i].Length();
+        ++n;
+      }
+    }
+    full_length_ = n > 0 ? sum / n : max_length_;
+    full_dirty_ = false;
+  }
+  return full_length_;
+}
 
 void RltPlane::MarkFull(int64_t first, int64_t last) {
   for (auto& range : full_ranges_) {
@@ -93,17 +110,6 @@ void RltPlane::MarkFull(int64_t first, int64_t last) {
     }
   }
   if (!merged) full_ranges_.emplace_back(first, last);
-  // Mean visible length while seen whole: unbiased, unlike the maximum, under noise.
-  double sum = 0.0;
-  int n = 0;
-  for (auto r = full_ranges_.rbegin(); r != full_ranges_.rend() && n < 300; ++r) {
-    for (size_t i = LowerBound(r->first); i < observations_.size() && n < 300; ++i) {
-      if (observations_[i].iteration > r->second) break;
-      sum += observations_[i].Length();
-      ++n;
-    }
-  }
-  if (n > 0) full_length_ = sum / n;
+  full_dirty_ = true;
 }
-
 }  // namespace relplane::mapper

@@ -38,7 +38,7 @@ class RltPlane {
   // Largest visible length seen (§II.C "maximum size of a plane"); once the wall has been seen
   // whole (both edges static at once) the mean length over those sightings.
   double Length() const;
-  bool FullLengthKnown() const { return full_length_ > 0.0; }
+  bool FullLengthKnown() const { return !full_ranges_.empty(); }
   // Marks iterations [first, last] as ones where both edges were static: the wall seen whole.
   void MarkFull(int64_t first, int64_t last);
   double ZMin() const { return z_min_; }
@@ -60,7 +60,8 @@ class RltPlane {
   int64_t count_ = 0;
   double max_length_ = 0.0;
   std::vector<std::pair<int64_t, int64_t>> full_ranges_;
-  double full_length_ = 0.0;
+  mutable double full_length_ = 0.0;  // computed lazily from full_ranges_
+  mutable bool full_dirty_ = false;
   double z_min_;
   double z_max_;
   // Growth tracking: phase starts (iteration, first of the phase), current trend and extreme.

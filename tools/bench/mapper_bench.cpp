@@ -1,0 +1,94 @@
+// Mapper speed targets (issue 4): <= 1 ms per iteration with 30 visible planes, and the same
+// with a 2,000-plane map. Plane sets are made beforehand by the ideal segmenter so only the
+// mapper is timed. Run by hand: relplane-bench-mapper.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include "ideal_segmenter.hpp"
+
+namespace {
+
+using relplane::geometry::Pose2;
+using relplane::mapper::Mapper;
+using relplane::mapper::PlaneInput;
+using namespace relplane::mapper::testing;
+
+// 30 short walls on two arcs ahead of the sensor, none hiding another.
+World ThirtyWalls() {
+  World w{"thirty_walls", {}};
+  for (int i = 0; i < 30; ++i) {
+    const double angle = (-38.0 + 76.0 * i / 29.0) * M_PI / 180.0;
+    const double r = 4.0 + 0.6 * (i % 2);
+    const Eigen::Vector2d c(r * std::cos(angle), r * std::sin(angle));
+    const Eigen::Vector2d t(-std::sin(angle), std::cos(angle));
+    w.walls.push_back({c - 0.09 * t, c + 0.09 * t});
+  }
+  return w;
+}
+
+std::vector<std::vector<PlaneInput>> Frames(IdealSegmenter& segmenter,
+                                            const std::vector<Pose2>& poses) {
+  std::vector<std::vector<PlaneInput>> frames;
+  for (const auto& pose : poses) frames.push_back(segmenter.Planes(pose));
+  return frames;
+}
+
+void BM_Iteration30VisiblePlanes(benchmark::State& state) {
+  IdealSegmenter segmenter(ThirtyWalls(), {});
+  // Sway back and forth so the walls stay in view; warm up for 300 iterations first.
+  std::vector<Pose2> poses;
+  for (int k = 0; k < 2000; ++k) {
+    poses.push_back({0.4 * std::sin(k * 0.01), 0.2 * std::sin(k * 0.013), 0.05 * std::sin(k * 0.02)});
+  }
+  const auto frames = Frames(segmenter, poses);
+  Mapper mapper;
+  int64_t k = 0;
+  for (; k < 300; ++k) mapper.Process(k, frames[k]);
+  size_t visible = 0;
+  for (auto _ : state) {
+    const auto est = mapper.Process(k, frames[k % frames.size()]);
+    benchmark::DoNotOptimize(est);
+    visible += frames[k % frames.size()].size();
+    ++k;
+  }
+  state.counters["visible"] = static_cast<double>(visible) / state.iterations();
+  state.counters["map"] = static_cast<double>(mapper.State().global.size());
+}
+BENCHMARK(BM_Iteration30VisiblePlanes)->Unit(benchmark::kMicrosecond)->Iterations(1000)
+    ->Repetitions(5)->ReportAggregatesOnly(true);
+
+void BM_IterationWith2000PlaneMap(benchmark::State& state) {
+  // A 1.5 km hallway with doors every 3 m on both sides, driven end to end to build the map;
+  // the last 300 iterations are timed.
+  static Mapper* mapper = nullptr;
+  static std::vector<std::vector<PlaneInput>> tail;
+  static int64_t k = 0;
+  static int64_t base = 0;
+  if (mapper == nullptr) {
+    IdealSegmenter segmenter(HallwayWithDoors(1560.0), {});
+    const auto poses = Drive({{0, 0}, {1550, 0}}, 1.2, 0.8);
+    mapper = new Mapper();
+    const size_t timed = 1500;
+    for (; k < static_cast<int64_t>(poses.size() - timed); ++k) {
+      mapper->Process(k, segmenter.Planes(poses[k]));
+    }
+    tail = Frames(segmenter, {poses.end() - timed, poses.end()});
+    base = k;
+  }
+  const int64_t start = static_cast<int64_t>(mapper->State().global.size());
+  for (auto _ : state) {
+    const size_t i = static_cast<size_t>(k - base) % tail.size();
+    const auto est = mapper->Process(k, tail[i]);
+    benchmark::DoNotOptimize(est);
+    ++k;
+  }
+  state.counters["map"] = static_cast<double>(start);
+}
+BENCHMARK(BM_IterationWith2000PlaneMap)->Unit(benchmark::kMicrosecond)->Iterations(300)
+    ->Repetitions(5)->ReportAggregatesOnly(true);
+
+}  // namespace
+
+BENCHMARK_MAIN();
