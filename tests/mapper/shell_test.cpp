@@ -1,0 +1,86 @@
+// The service shell: PLANES -> mapper input (bad input refused with a reason), mapper output
+// -> POSE/MAP, and the `mapper` options section.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "convert.hpp"
+#include "options_yaml.hpp"
+
+namespace relplane::mapper {
+namespace {
+
+plane_t Plane(float x) {
+  plane_t p{};
+  p.id = 0;
+  p.normal[0] = -1, p.normal[1] = 0, p.normal[2] = 0;
+  p.d = x;
+  p.centroid[0] = x, p.centroid[1] = 0, p.centroid[2] = 0;
+  p.vertices = {{x, -1, -1}, {x, 1, -1}, {x, 1, 1}, {x, -1, 1}};
+  p.num_vertices = 4;
+  return p;
+}
+
+TEST(Convert, PlaneSetRoundTripAndBadInput) {
+  plane_set_t set{};
+  set.seq = 3;
+  set.planes = {Plane(3.0f)};
+  set.num_planes = 1;
+  std::vector<PlaneInput> planes;
+  std::string reason;
+  ASSERT_TRUE(FromPlaneSet(set, &planes, &reason));
+  ASSERT_EQ(planes.size(), 1u);
+  EXPECT_EQ(planes[0].vertices.size(), 4u);
+  set.planes[0].d = std::nanf("");
+  EXPECT_FALSE(FromPlaneSet(set, &planes, &reason));
+  EXPECT_NE(reason.find("non-finite"), std::string::npos);
+  set.planes[0] = Plane(3.0f);
+  set.planes[0].normal[0] = 0;
+  EXPECT_FALSE(FromPlaneSet(set, &planes, &reason));
+  EXPECT_NE(reason.find("zero normal"), std::string::npos);
+  set.num_planes = 2;
+  EXPECT_FALSE(FromPlaneSet(set, &planes, &reason));
+}
+
+TEST(Convert, PoseAndMapMessages) {
+  PoseEstimate est;
+  est.pose = {1.0, 2.0, M_PI / 2};
+  est.status = PoseStatus::kMotionModel;
+  const pose_t pose = ToPoseMessage(est, 1.0, 100, 3);
+  EXPECT_EQ(pose.seq, 3);
+  EXPECT_EQ(pose.utime, 100);
+  EXPECT_EQ(pose.status, static_cast<int8_t>(pose_t::STATUS_MOTION_MODEL));
+  EXPECT_DOUBLE_EQ(pose.position[2], 1.0);
+  EXPECT_NEAR(pose.orientation[0], std::cos(M_PI / 4), 1e-12);
+  MapSnapshot map;
+  map.planes.push_back({7, {0, 1, 0}, -1, {0, 1, 1}, {{0, 1, 0}, {1, 1, 0}, {1, 1, 2}, {0, 1, 2}},
+                        12});
+  map.groups.push_back({0, 7, {7}});
+  const map_t msg = ToMapMessage(map, 100, 3);
+  ASSERT_EQ(msg.num_planes, 1);
+  EXPECT_EQ(msg.planes[0].id, 7);
+  EXPECT_EQ(msg.planes[0].num_vertices, 4);
+  EXPECT_EQ(msg.planes[0].num_points, 12);
+  ASSERT_EQ(msg.num_groups, 1);
+  EXPECT_EQ(msg.groups[0].basis_id, 7);
+}
+
+TEST(Options, ReadsTheSectionAndRefusesUnknownKeys) {
+  const std::string file = ::testing::TempDir() + "mapper_options.yaml";
+  std::ofstream(file) << "name: x\nmapper:\n  start_pose: {x: 1, y: 2, z: 1.0, yaw: 0.5}\n"
+                         "  grouping: {min_observations: 5}\n";
+  const MapperOptions o = LoadMapperOptions(file);
+  EXPECT_DOUBLE_EQ(o.start_pose.z, 1.0);
+  EXPECT_DOUBLE_EQ(o.start_pose.yaw, 0.5);
+  EXPECT_EQ(o.grouping.min_observations, 5);
+  std::ofstream(file) << "mapper:\n  grouping: {min_observatons: 5}\n";
+  EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
+  std::ofstream(file) << "mapper:\n  comparison: {static_std: -1}\n";
+  EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
+  std::remove(file.c_str());
+}
+
+}  // namespace
+}  // namespace relplane::mapper
