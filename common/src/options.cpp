@@ -19,9 +19,6 @@ std::string TypeName(const std::vector<double>*) { return "a list of numbers"; }
 std::string TypeName(const std::vector<std::string>*) { return "a list of strings"; }
 }  // namespace detail
 
-namespace {
-
-// Edit distance, to suggest the key a typo was meant to be.
 size_t EditDistance(const std::string& a, const std::string& b) {
   std::vector<size_t> row(b.size() + 1);
   for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -36,6 +33,8 @@ size_t EditDistance(const std::string& a, const std::string& b) {
   }
   return row[b.size()];
 }
+
+namespace {
 
 std::string Join(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;

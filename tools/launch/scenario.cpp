@@ -10,21 +10,6 @@
 namespace relplane::launch {
 namespace {
 
-size_t EditDistance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1u : 0u)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 std::string ReadText(const std::string& file) {
   std::ifstream in(file);
   if (!in) throw config::ConfigError(file + ": cannot open the file");
@@ -51,7 +36,7 @@ std::string ClosestKey(const std::string& key, const std::vector<std::string>& c
   std::string best;
   size_t best_distance = 3;  // only close matches are suggestions
   for (const std::string& candidate : candidates) {
-    const size_t distance = EditDistance(key, candidate);
+    const size_t distance = config::EditDistance(key, candidate);
     if (distance < best_distance) {
       best_distance = distance;
       best = candidate;

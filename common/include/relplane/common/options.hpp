@@ -14,6 +14,9 @@
 
 namespace relplane::config {
 
+// Levenshtein distance, to suggest the key a typo was meant to be.
+size_t EditDistance(const std::string& a, const std::string& b);
+
 // Every loader failure. what() is one line: "FILE:LINE: key 'a.b': reason".
 class ConfigError : public std::runtime_error {
  public:
