@@ -33,6 +33,19 @@ TEST(LatencyTable, StagesMatchedBySeqAndDropsCounted) {
   EXPECT_NEAR(r.achieved_hz, 100 / 3.3, 1e-9);
 }
 
+TEST(LatencyTable, UnpacedIsJudgedAgainstTheRateItAchieved) {
+  // 100 frames in 0.1 s (1 kHz) with 3 ms latency: no drops, but p99 exceeds the 1 ms period.
+  LatencyTable t;
+  for (int64_t seq = 0; seq < 100; ++seq) {
+    t.Stamp(Stage::kPublished, seq, seq * 1000);
+    t.Stamp(Stage::kPose, seq, seq * 1000 + 3000);
+  }
+  const RateResult r = t.Summarise(0.0, 0.1);
+  EXPECT_EQ(r.dropped, 0);
+  EXPECT_FALSE(r.held);
+  EXPECT_TRUE(t.Summarise(0.0, 1.0).held);  // at 100 Hz the same latency fits the period
+}
+
 TEST(LatencyTable, RepeatedStampKeepsTheFirst) {
   LatencyTable t;
   t.Stamp(Stage::kPublished, 0, 0);

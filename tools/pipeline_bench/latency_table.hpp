@@ -29,7 +29,8 @@ struct RateResult {
   LatencySummary segmenter;   // PLANES receive - SENSOR_POINTS publish
   LatencySummary mapper;      // POSE receive - PLANES receive
   LatencySummary end_to_end;  // POSE receive - SENSOR_POINTS publish
-  // Held: nothing dropped and p99 end to end within one frame period (unpaced: no drops).
+  // Held: nothing dropped and p99 end to end within one frame period (unpaced: the period of
+  // the rate achieved).
   bool held = false;
 };
 

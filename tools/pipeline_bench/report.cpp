@@ -50,6 +50,13 @@ Verdict Judge(const BenchReport& report) {
       check(false, res.name + ": no run at 30 Hz");
       continue;
     }
+    if (res.name == "640x480") {
+      // The large-cloud target is zero drops at 30 Hz; its latency is reported, not judged.
+      check(at30->frames > 0 && at30->dropped == 0,
+            "640x480 at 30 Hz with zero drops (drops " + std::to_string(at30->dropped) +
+                ", p99 " + Fixed(at30->end_to_end.p99_ms) + " ms)");
+      continue;
+    }
     check(at30->held, res.name + " holds 30 it/s (drops " + std::to_string(at30->dropped) +
                           ", p99 " + Fixed(at30->end_to_end.p99_ms) + " ms)");
     if (res.name == "160x120") {
