@@ -11,6 +11,7 @@
 #include "relplane/common/bus.hpp"
 #include "relplane/common/cli.hpp"
 #include "relplane/common/service_runtime.hpp"
+#include "relplane/common/service_start.hpp"
 #include "relplane/common/service_stats.hpp"
 #include "relplane/mapper/mapper.hpp"
 
@@ -18,8 +19,8 @@ namespace {
 
 using namespace relplane;
 
-constexpr double kBudgetMs = 5.0;             // the mapper's share of the 33.3 ms iteration
-constexpr int64_t kMapPeriodUs = 100000;      // MAP at most 10 Hz of simulated time
+constexpr double kBudgetMs = 5.0;         // the mapper's share of the 33.3 ms iteration
+constexpr int64_t kMapPeriodUs = 100000;  // MAP at most 10 Hz of simulated time
 
 class MapperService {
  public:
@@ -37,8 +38,8 @@ class MapperService {
     const int64_t t0 = MonotonicMicros();
     const mapper::PoseEstimate estimate = mapper_.Process(msg.seq, planes);
     stats_.Processed(static_cast<double>(MonotonicMicros() - t0) / 1000.0);
-    bus::Publish(bus_, "POSE", mapper::ToPoseMessage(estimate, mapper_.Height(), msg.utime,
-                                                     msg.seq));
+    bus::Publish(bus_, "POSE",
+                 mapper::ToPoseMessage(estimate, mapper_.Height(), msg.utime, msg.seq));
     if (mapper_.TakeMapChanged()) map_pending_ = true;
     last_utime_ = msg.utime;
     last_seq_ = msg.seq;
@@ -72,29 +73,18 @@ class MapperService {
 
 int main(int argc, char** argv) {
   CLI::App app{"relplane-mapper: the Relative Plane algorithm (PLANES -> POSE, MAP)"};
-  cli::CommonFlags flags;
-  cli::AddCommonFlags(app, &flags);
-  bool check_config = false;
-  app.add_flag("--check-config", check_config, "Check the `mapper` section of --config and exit");
+  ServiceStart start;
+  AddServiceFlags(app, "mapper", &start);
   if (const auto code = cli::Parse(app, argc, argv)) return *code;
 
   mapper::MapperOptions options;
-  try {
-    cli::SetupLogging("relplane-mapper", flags.log_level);
-    options = mapper::LoadMapperOptions(flags.config);
-  } catch (const std::exception& e) {
-    std::cerr << e.what() << "\n";
-    return cli::kExitConfig;
+  if (const auto code = LoadSectionOptions<mapper::MapperOptions>(
+          start, "relplane-mapper", mapper::LoadMapperOptions, &options)) {
+    return *code;
   }
-  if (check_config) return 0;
 
-  std::unique_ptr<bus::Bus> bus;
-  try {
-    bus = bus::OpenLcmBus(bus::ResolveUrl(flags.lcm_url));
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
+  std::unique_ptr<bus::Bus> bus = OpenServiceBus(start);
+  if (!bus) return 1;
   InstallStopHandlers();
   MapperService service(*bus, options);
   bus::Subscribe<plane_set_t>(

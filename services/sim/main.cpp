@@ -13,6 +13,7 @@
 #include "relplane/common/bus.hpp"
 #include "relplane/common/cli.hpp"
 #include "relplane/common/service_runtime.hpp"
+#include "relplane/common/service_start.hpp"
 #include "relplane/common/service_stats.hpp"
 #include "relplane/sim/simulation.hpp"
 
@@ -97,38 +98,27 @@ int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double 
 
 int main(int argc, char** argv) {
   CLI::App app{"relplane-sim: simulated depth sensor in a world of rectangles"};
-  cli::CommonFlags flags;
-  cli::AddCommonFlags(app, &flags);
+  ServiceStart start;
+  AddServiceFlags(app, "sim", &start);
   double rate = -1.0;
   int64_t iterations = -1;
-  bool check_config = false;
   app.add_option("--rate", rate,
                  "Publishing pace in iterations/s (0: as fast as possible; default: the "
                  "scenario's sim.rate_hz). Simulated time always steps by 1/sim.rate_hz")
       ->check(NotNegative());
   app.add_option("--iterations", iterations, "Stop after N iterations")->check(NotNegative());
-  app.add_flag("--check-config", check_config, "Check the `sim` section of --config and exit");
   if (const auto code = cli::Parse(app, argc, argv)) return *code;
 
   sim::ServiceOptions options;
-  try {
-    cli::SetupLogging("relplane-sim", flags.log_level);
-    options = sim::LoadServiceOptions(flags.config);
-  } catch (const std::exception& e) {
-    std::cerr << e.what() << "\n";
-    return cli::kExitConfig;
+  if (const auto code = LoadSectionOptions<sim::ServiceOptions>(
+          start, "relplane-sim", sim::LoadServiceOptions, &options)) {
+    return *code;
   }
-  if (check_config) return 0;
   if (rate < 0.0) rate = options.sim.rate_hz;
 
   sim::Simulation simulation(options.sim);
-  std::unique_ptr<bus::Bus> bus;
-  try {
-    bus = bus::OpenLcmBus(bus::ResolveUrl(flags.lcm_url));
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
+  std::unique_ptr<bus::Bus> bus = OpenServiceBus(start);
+  if (!bus) return 1;
   InstallStopHandlers();
   return Run(simulation, options, rate, iterations, *bus);
 }

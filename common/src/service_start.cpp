@@ -1,0 +1,22 @@
+#include "relplane/common/service_start.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace relplane {
+
+void AddServiceFlags(CLI::App& app, const std::string& section, ServiceStart* start) {
+  cli::AddCommonFlags(app, &start->flags);
+  app.add_flag("--check-config", start->check_config,
+               "Check the `" + section + "` section of --config and exit (0, or 2 with the error)");
+}
+
+std::unique_ptr<bus::Bus> OpenServiceBus(const ServiceStart& start) {
+  try {
+    return bus::OpenLcmBus(bus::ResolveUrl(start.flags.lcm_url));
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return nullptr;
+  }
+}
+
+}  // namespace relplane
