@@ -87,3 +87,29 @@ TEST(Pipeline, ReplayingALogTwiceGivesIdenticalResults) {
 
 }  // namespace
 }  // namespace relplane::testing
+
+namespace relplane::testing {
+namespace {
+
+// The full pipeline (simulator, EM segmenter, mapper, logger) meets the mapper's targets on
+// straight_hallway, noise-free and with sigma = 1 cm: the scenario's `expect:` section, scored
+// by the logger into metrics.json (issue 4 targets; issue 7 integration test).
+TEST(Pipeline, StraightHallwayMeetsTheMapperTargets) {
+  const char* const noise[] = {"0", "0.01"};
+  for (int i = 0; i < 2; ++i) {
+    TempDir dir;
+    std::string output;
+    ASSERT_EQ(RunLauncher({Scenario(), "--out", dir.Path() + "/run", "--lcm-url",
+                           TestBusUrl(47124 + i), "--set",
+                           std::string("sim.sensor.noise_sigma=") + noise[i]},
+                          120, &output),
+              0)
+        << output;
+    const std::string metrics = ReadText(dir.Path() + "/run/metrics.json");
+    EXPECT_NE(metrics.find("\"expect_pass\": true"), std::string::npos)
+        << "noise " << noise[i] << ":\n" << output;
+  }
+}
+
+}  // namespace
+}  // namespace relplane::testing
