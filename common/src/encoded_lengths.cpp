@@ -13,6 +13,8 @@ class Cursor {
     pos_ += n;
     return true;
   }
+  // The next `n` bytes (which must be there: check with a length read first).
+  const uint8_t* Peek() const { return data_ + pos_; }
   bool ReadInt32(int32_t* v) {
     if (size_ - pos_ < 4) return false;
     const uint32_t u = (uint32_t{data_[pos_]} << 24) | (uint32_t{data_[pos_ + 1]} << 16) |
@@ -71,6 +73,13 @@ bool WalkString(Cursor& c, std::string* reason, const char* what) {
   if (!c.ReadLength(1, &length, reason, what)) return false;
   // Encoded LCM strings carry their terminating NUL, so the length is at least one.
   if (length < 1) return Cursor::Fail(reason, "zero length of ", what);
+  // lcm-gen encodes up to the first NUL but sizes by std::string::size(), so a string with an
+  // inner NUL or no terminator would not encode back to what was received: refuse it.
+  const uint8_t* bytes = c.Peek();
+  for (int32_t i = 0; i + 1 < length; ++i) {
+    if (bytes[i] == 0) return Cursor::Fail(reason, "NUL inside ", what);
+  }
+  if (bytes[length - 1] != 0) return Cursor::Fail(reason, "no terminating NUL in ", what);
   return c.Skip(static_cast<size_t>(length));
 }
 

@@ -151,7 +151,15 @@ TEST(Decode, StatusRoundTripsAndZeroStringLengthIsRefused) {
   ASSERT_TRUE(Decode(buf.data(), buf.size(), &out, &reason)) << reason;
   EXPECT_EQ(out.service, "relplane-test");
   EXPECT_EQ(out.last_seq, 7);
-  // The service string's length field follows the hash and utime.
+  // A NUL inside the service string, or none at its end, would not encode back: refused.
+  // The string's length field follows the hash and utime; its bytes follow the length.
+  std::vector<uint8_t> inner = buf;
+  inner[20 + 3] = 0;
+  EXPECT_FALSE(Decode(inner.data(), inner.size(), &out, &reason));
+  std::vector<uint8_t> unterminated = buf;
+  unterminated[20 + status.service.size()] = 'x';
+  EXPECT_FALSE(Decode(unterminated.data(), unterminated.size(), &out, &reason));
+  // A zero length is refused.
   buf[16] = buf[17] = buf[18] = buf[19] = 0;
   EXPECT_FALSE(Decode(buf.data(), buf.size(), &out, &reason));
 }
