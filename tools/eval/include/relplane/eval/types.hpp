@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "relplane/common/service_stats.hpp"
+
 namespace relplane::eval {
 
 // Mirrors pose_t's status constants (lcmtypes/pose_t.lcm).
@@ -51,17 +53,11 @@ struct MapSnapshot {
   std::vector<GroupRecord> groups;
 };
 
-// One STATUS report of one service.
-struct StatusSample {
+// One STATUS report of one service: the counters every service keeps (ServiceStats), with
+// when and from whom.
+struct StatusSample : StatusSnapshot {
   int64_t utime = 0;
   std::string service;
-  int64_t frames_processed = 0;
-  int64_t frames_dropped = 0;
-  int64_t inputs_rejected = 0;
-  double p50_ms = 0.0;
-  double p99_ms = 0.0;
-  double max_ms = 0.0;
-  int64_t last_seq = -1;
 };
 
 }  // namespace relplane::eval
