@@ -19,13 +19,55 @@ ServiceStats::ServiceStats(std::string service, double budget_ms)
     : service_(std::move(service)), budget_ms_(budget_ms) {}
 
 bool ServiceStats::AcceptSeq(int64_t seq) {
-  if (last_seq_ >= 0 && seq <= last_seq_) {
+  if (seq < 0) {
+    Rejected("seq " + std::to_string(seq) + " is negative");
+    return false;
+  }
+  if (last_seq_ < 0) {  // the first frame sets the stream
+    last_seq_ = seq;
+    return true;
+  }
+  if (seq <= last_seq_) {
+    // Older: late, repeated, or a source that started again. Only an increasing run of them
+    // re-syncs, so neither a repeated message nor out-of-order delivery can.
+    older_in_a_row_ = (older_in_a_row_ > 0 && seq > older_seq_) ? older_in_a_row_ + 1 : 1;
+    older_seq_ = seq;
+    suspect_seq_ = -1;
+    if (older_in_a_row_ >= kResyncAfter) {
+      spdlog::info("seq re-synced from {} back to {} ({} older seqs in a row: a restarted source)",
+                   last_seq_, seq, older_in_a_row_);
+      Resync(seq);
+      return true;
+    }
     Rejected("seq " + std::to_string(seq) + " is not after " + std::to_string(last_seq_));
     return false;
   }
-  if (last_seq_ >= 0 && seq > last_seq_ + 1) dropped_ += seq - last_seq_ - 1;
+  older_in_a_row_ = 0;
+  if (seq - last_seq_ > kMaxSeqJump) {
+    // Far ahead: held as a suspect until the next seq follows it.
+    if (suspect_seq_ >= 0 && seq > suspect_seq_ && seq - suspect_seq_ <= kMaxSeqJump) {
+      spdlog::info("seq re-synced from {} to {} (a jump confirmed by the next frame)", last_seq_,
+                   seq);
+      Resync(seq);
+      return true;
+    }
+    suspect_seq_ = seq;
+    Rejected("seq " + std::to_string(seq) + " is more than " + std::to_string(kMaxSeqJump) +
+             " ahead of " + std::to_string(last_seq_));
+    return false;
+  }
+  suspect_seq_ = -1;
+  if (seq > last_seq_ + 1) dropped_ += seq - last_seq_ - 1;
   last_seq_ = seq;
   return true;
+}
+
+void ServiceStats::Resync(int64_t seq) {
+  last_seq_ = seq;
+  suspect_seq_ = -1;
+  older_seq_ = -1;
+  older_in_a_row_ = 0;
+  ++resyncs_;
 }
 
 void ServiceStats::Processed(double elapsed_ms) {
