@@ -98,12 +98,11 @@ int main(int argc, char** argv) {
 
   constexpr double kRate = 30.0;
   const World world = HallwayLoop(16.0, 10.0, 2.0, 3.0);
-  // One lap of the centre line is about a minute at 1 m/s; drive enough laps for `minutes`.
+  // Drive enough laps of the centre line for `minutes`.
   const std::vector<Eigen::Vector2d> corners = {{0, 0}, {14, 0}, {14, 8}, {0, 8}};
-  const int laps = static_cast<int>(minutes) + 2;
-  const auto poses = Drive(corners, 1.0, 0.8, kRate, laps);
-  const auto iterations =
-      std::min<int64_t>(static_cast<int64_t>(poses.size()), std::llround(minutes * 60 * kRate));
+  const int64_t iterations = std::llround(minutes * 60 * kRate);
+  const auto lap = static_cast<int64_t>(Drive(corners, 1.0, 0.8, kRate, 1).size());
+  const auto poses = Drive(corners, 1.0, 0.8, kRate, static_cast<int>(iterations / lap) + 2);
 
   IdealSegmenter segmenter(world, {}, noisy ? Noise{0.003, 0.003, 0.015, 7} : Noise{});
   Mapper mapper;
