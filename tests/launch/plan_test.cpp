@@ -43,8 +43,10 @@ TEST(ServiceCommandTest, ConfigUrlAndPerServiceFlags) {
   LaunchOptions options;
   const ChildSpec mapper =
       ServiceCommand("mapper", "/b", "/r/scenario.yaml", "udpm://x:1", "/r", options);
-  EXPECT_EQ(mapper.argv, (std::vector<std::string>{"/b/relplane-mapper", "--config",
-                                                   "/r/scenario.yaml", "--lcm-url", "udpm://x:1"}));
+  EXPECT_EQ(mapper.argv,
+            (std::vector<std::string>{"/b/relplane-mapper", "--config", "/r/scenario.yaml",
+                                      "--lcm-url", "udpm://x:1", "--checkpoint",
+                                      "/r/mapper.journal"}));
   const ChildSpec logger = ServiceCommand("logger", "/b", "/r/s.yaml", "u", "/r", options);
   EXPECT_EQ(logger.argv.back(), "/r");
   EXPECT_EQ(logger.argv[logger.argv.size() - 2], "--out");
@@ -57,7 +59,7 @@ TEST(ServiceCommandTest, ConfigUrlAndPerServiceFlags) {
   const ChildSpec short_sim = ServiceCommand("sim", "/b", "s", "u", "/r", options, 12);
   EXPECT_EQ(short_sim.argv[short_sim.argv.size() - 2], "--iterations");
   EXPECT_EQ(short_sim.argv.back(), "12");
-  EXPECT_EQ(ServiceCommand("mapper", "/b", "s", "u", "/r", options, 12).argv.size(), 5u);
+  EXPECT_EQ(ServiceCommand("mapper", "/b", "s", "u", "/r", options, 12).argv.size(), 7u);
 }
 
 TEST(RecorderCommandTest, UsesTheLongUrlFlag) {

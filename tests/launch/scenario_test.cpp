@@ -121,6 +121,53 @@ TEST(ReadLaunchOptionsTest, RejectsTyposAndBadValues) {
             "s.yaml:2: key 'launch.services': expected a list of strings");
 }
 
+TEST(ReadLaunchOptionsTest, RestartPolicy) {
+  const LaunchOptions none = ReadLaunchOptions("launch:\n  services: [sim, mapper]\n", "s.yaml");
+  EXPECT_EQ(none.restart.max_restarts, 0);
+  EXPECT_FALSE(none.restart.Covers("mapper"));
+
+  const LaunchOptions listed = ReadLaunchOptions(
+      "launch:\n  services: [sim, segmenter, mapper]\n"
+      "  restart: {max_restarts: 3, services: [mapper]}\n",
+      "s.yaml");
+  EXPECT_EQ(listed.restart.max_restarts, 3);
+  EXPECT_TRUE(listed.restart.Covers("mapper"));
+  EXPECT_FALSE(listed.restart.Covers("segmenter"));
+
+  // Without a list: every service but the simulator.
+  const LaunchOptions all = ReadLaunchOptions(
+      "launch:\n  services: [sim, segmenter, mapper, logger]\n  restart:\n    max_restarts: 1\n",
+      "s.yaml");
+  EXPECT_EQ(all.restart.services, (std::vector<std::string>{"segmenter", "mapper", "logger"}));
+  EXPECT_FALSE(all.restart.Covers("sim"));
+}
+
+TEST(ReadLaunchOptionsTest, RestartPolicyTyposAreOneLine) {
+  const auto error = [](const std::string& text) -> std::string {
+    try {
+      ReadLaunchOptions("launch:\n  services: [sim, mapper]\n" + text, "s.yaml");
+    } catch (const config::ConfigError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error("  restart: {max_restart: 3}\n"),
+            "s.yaml:3: unknown key 'launch.restart.max_restart' (did you mean 'max_restarts'?)");
+  EXPECT_EQ(error("  restart: {max_restarts: -1}\n"),
+            "s.yaml:3: key 'launch.restart.max_restarts': must be >= 0");
+  EXPECT_EQ(error("  restart: {max_restarts: many}\n"),
+            "s.yaml:3: key 'launch.restart.max_restarts': expected an integer");
+  EXPECT_EQ(error("  restart: {max_restarts: 2, services: [maper]}\n"),
+            "s.yaml:3: key 'launch.restart.services': 'maper' is not in launch.services (did "
+            "you mean 'mapper'?)");
+  EXPECT_EQ(error("  restart: {max_restarts: 2, services: [sim]}\n"),
+            "s.yaml:3: key 'launch.restart.services': 'sim' cannot be restarted: its end ends "
+            "the run");
+  EXPECT_EQ(error("  restrat: {max_restarts: 2}\n"),
+            "s.yaml:3: unknown key 'launch.restrat' (did you mean 'restart'?)");
+  EXPECT_NE(error("  restart: 3\n"), "");
+}
+
 TEST(ScenarioNameTest, NameKeyElseStemMadeSafe) {
   EXPECT_EQ(ScenarioName(YAML::Load("name: hallway loop/2"), "a/b.yaml"), "hallway_loop_2");
   EXPECT_EQ(ScenarioName(YAML::Load("sim: {}"), "scenarios/office.yaml"), "office");

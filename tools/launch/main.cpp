@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -139,6 +140,8 @@ std::string MakeRunFolder(const Request& request, const Resolved& scenario) {
     throw SetupError(run_dir + ": the replay would record over the log it plays; choose --out");
   }
   WriteFile(run_dir + "/scenario.yaml", scenario.text);
+  // A journal left by an earlier run in the same folder must not be resumed by this one.
+  std::remove((run_dir + "/" + kMapperJournal).c_str());
   return run_dir;
 }
 
@@ -166,6 +169,7 @@ int Run(const Request& request, const Resolved& scenario, const Cast& cast, cons
   supervision.drain_s = scenario.options.drain_s;
   supervision.bus_port = PortOfUrl(url).value_or(-1);
   supervision.source = cast.source;
+  supervision.restart = scenario.options.restart;
   const int code = Supervise(RecorderCommand(cast.lcm_logger, url, run_dir), children, supervision);
   const char* verdict = code == kExitOk            ? "done"
                         : code == kExitInterrupted ? "interrupted"

@@ -23,6 +23,9 @@ ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
   spec.name = name;
   spec.argv = {bin_dir + "/relplane-" + name, "--config", scenario_file, "--lcm-url", url};
   if (name == "logger") spec.argv.insert(spec.argv.end(), {"--out", run_dir});
+  if (name == "mapper") {
+    spec.argv.insert(spec.argv.end(), {"--checkpoint", run_dir + "/" + kMapperJournal});
+  }
   if (name == kSourceService && options.rate_hz >= 0.0) {
     spec.argv.insert(spec.argv.end(), {"--rate", FormatNumber(options.rate_hz)});
   }

@@ -19,6 +19,9 @@ inline const std::vector<std::string> kReplayServices = {"segmenter", "mapper", 
 // The channels a replay feeds: the simulator's. The services' own outputs are made afresh.
 inline const std::string kReplayChannels = "^(SENSOR_POINTS|SIM_TRUTH|SIM_WORLD)$";
 
+// The mapper's checkpoint in the run folder: it resumes from it when restarted.
+inline const std::string kMapperJournal = "mapper.journal";
+
 // One process of the run: a name for its output prefix and its command line.
 struct ChildSpec {
   std::string name;
@@ -26,7 +29,7 @@ struct ChildSpec {
 };
 
 // The command line of service `name`: relplane-NAME --config SCENARIO --lcm-url URL, plus
-// --out RUN for the logger and --rate for the simulator when the scenario sets launch.rate_hz.
+// --out RUN for the logger, --checkpoint RUN/mapper.journal for the mapper and --rate for the simulator when the scenario sets launch.rate_hz.
 // `iterations` >= 0 is passed to the simulator as --iterations.
 ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
                          const std::string& scenario_file, const std::string& url,

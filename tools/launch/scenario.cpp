@@ -24,7 +24,36 @@ std::string Stem(const std::string& file) {
   return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
 }
 
+// `launch.restart`; `services` are the run's services, to check the names against.
+RestartPolicy ReadRestartPolicy(config::Reader reader, const std::vector<std::string>& services) {
+  RestartPolicy policy;
+  reader.Read("max_restarts", &policy.max_restarts);
+  if (policy.max_restarts < 0) reader.Fail("max_restarts", "must be >= 0");
+  if (!reader.Has("services")) {
+    for (const std::string& service : services) {
+      if (service != "sim") policy.services.push_back(service);
+    }
+    return policy;
+  }
+  reader.Read("services", &policy.services);
+  for (const std::string& service : policy.services) {
+    if (service == "sim") {
+      reader.Fail("services", "'sim' cannot be restarted: its end ends the run");
+    }
+    if (std::find(services.begin(), services.end(), service) == services.end()) {
+      const std::string closest = ClosestKey(service, services);
+      reader.Fail("services", "'" + service + "' is not in launch.services" +
+                                  (closest.empty() ? "" : " (did you mean '" + closest + "'?)"));
+    }
+  }
+  return policy;
+}
+
 }  // namespace
+
+bool RestartPolicy::Covers(const std::string& service) const {
+  return max_restarts > 0 && std::find(services.begin(), services.end(), service) != services.end();
+}
 
 const std::vector<std::string>& TopLevelKeys() {
   static const std::vector<std::string> keys = {"name", "description", "launch", "expect",
@@ -79,6 +108,7 @@ LaunchOptions ReadLaunchOptions(const std::string& yaml_text, const std::string&
   reader.Read("grace_s", &options.grace_s);
   reader.Read("drain_s", &options.drain_s);
   reader.Read("rate_hz", &options.rate_hz);
+  options.restart = ReadRestartPolicy(reader.Child("restart"), options.services);
   reader.Finish();
   for (size_t i = 0; i < options.services.size(); ++i) {
     const std::string& service = options.services[i];

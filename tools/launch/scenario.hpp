@@ -9,6 +9,14 @@
 
 namespace relplane::launch {
 
+// `launch.restart`: which services are started again when they crash (a non-zero exit or a
+// signal the launcher did not send), and how often at most per service.
+struct RestartPolicy {
+  int max_restarts = 0;               // per service; 0: a crash fails the run (the default)
+  std::vector<std::string> services;  // default: every service of the run but the source
+  bool Covers(const std::string& service) const;
+};
+
 // The `launch` section (README "Scenario format").
 struct LaunchOptions {
   // Services to start, in this order, as relplane-<name> found beside relplane-launch.
@@ -20,6 +28,7 @@ struct LaunchOptions {
   // When > 0 or == 0: passed to the simulator as --rate (0: as fast as the bus allows).
   // Negative: the simulator's own rate.
   double rate_hz = -1.0;
+  RestartPolicy restart;
 };
 
 // The top-level keys a scenario may hold.

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <memory>
 #include <stdexcept>
 
@@ -98,6 +99,9 @@ class Run {
   // Collects ended children; false once the launcher has no child process at all.
   bool Reap();
   void OnExit(Child& child);
+  // True when `child` crashed and the restart policy starts it again (after Reap).
+  bool ScheduleRestart(const Child& child);
+  void StartPendingRestarts();
   void Fail(const std::string& message);
   void StopChild(Child& child);
   void StopAll();
@@ -106,7 +110,10 @@ class Run {
   void Print(const Child& child, bool is_err, const std::string& line) const;
 
   SupervisorOptions options_;
-  std::vector<std::unique_ptr<Child>> children_;
+  std::vector<std::unique_ptr<Child>> children_;  // a restarted service appears again, later
+  std::map<std::string, ChildSpec> specs_;        // command lines, to restart with
+  std::map<std::string, int> restarts_;           // restarts so far per service
+  std::vector<std::string> pending_restarts_;
   std::vector<std::string> stop_requested_;  // names we asked to stop
   size_t name_width_ = 0;
   bool stopping_ = false;
@@ -119,6 +126,7 @@ class Run {
 };
 
 Child* Run::Start(const ChildSpec& spec) {
+  specs_[spec.name] = spec;
   try {
     children_.push_back(std::make_unique<Child>(spec));
     return children_.back().get();
@@ -128,9 +136,10 @@ Child* Run::Start(const ChildSpec& spec) {
   }
 }
 
+// The latest process of that name (a restarted service's earlier ones have ended).
 Child* Run::Find(const std::string& name) {
-  for (auto& child : children_) {
-    if (child->Name() == name) return child.get();
+  for (auto it = children_.rbegin(); it != children_.rend(); ++it) {
+    if ((*it)->Name() == name) return it->get();
   }
   return nullptr;
 }
@@ -177,7 +186,36 @@ void Run::OnExit(Child& child) {
     drain_end_ = After(options_.drain_s);
     return;
   }
+  if (ScheduleRestart(child)) return;
   Fail("error: " + child.Name() + " " + DescribeExit(status) + " unexpectedly");
+}
+
+bool Run::ScheduleRestart(const Child& child) {
+  const int status = child.WaitStatus();
+  const bool crashed = WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) != 0);
+  if (!crashed || stopping_ || !options_.restart.Covers(child.Name())) return false;
+  int& count = restarts_[child.Name()];
+  const std::string limit = std::to_string(options_.restart.max_restarts);
+  if (count >= options_.restart.max_restarts) {
+    Say("error: " + child.Name() + " " + DescribeExit(status) + " after " + limit +
+        " restarts (launch.restart.max_restarts): giving up");
+    return false;
+  }
+  ++count;
+  Say("warning: " + child.Name() + " " + DescribeExit(status) + "; restarting it (restart " +
+      std::to_string(count) + " of " + limit + ")");
+  pending_restarts_.push_back(child.Name());
+  return true;
+}
+
+void Run::StartPendingRestarts() {
+  // Started outside Reap, which walks children_.
+  std::vector<std::string> names;
+  names.swap(pending_restarts_);
+  for (const std::string& name : names) {
+    if (stopping_) return;
+    Start(specs_.at(name));
+  }
 }
 
 bool Run::Reap() {
@@ -215,6 +253,7 @@ void Run::PumpOnce(int timeout_ms) {
       Print(*child, owners[i].second, line);
   }
   Reap();
+  StartPendingRestarts();
 
   const sig_atomic_t seen = g_stop_signals;
   if (seen != signals_seen_) {
@@ -335,6 +374,13 @@ int Run::Execute(const ChildSpec& recorder, const std::vector<ChildSpec>& servic
             [&] { return stopping_ || (draining_ && Clock::now() >= drain_end_); });
   StopAll();
   Sweep();
+  if (!restarts_.empty()) {
+    std::string counts;
+    for (const auto& [name, count] : restarts_) {
+      counts += (counts.empty() ? "" : ", ") + name + " " + std::to_string(count);
+    }
+    Say("restarts: " + counts);
+  }
   if (failed_) return kExitFailed;
   return interrupted_ ? kExitInterrupted : kExitOk;
 }

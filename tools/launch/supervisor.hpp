@@ -16,6 +16,7 @@ struct SupervisorOptions {
   double ready_timeout_s = 3.0;   // longest wait for the subscribers before the source starts
   int bus_port = -1;              // udpm port of the run, to see subscribers bind; -1: unknown
   std::string source = kSourceService;  // the child whose exit 0 ends the run (started last)
+  RestartPolicy restart;                // crashed services started again, up to a limit
 };
 
 // Exit codes of a run.
