@@ -82,7 +82,15 @@ int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double 
     const point_cloud_t cloud = sim::ToPointCloud(scan, k, utime);
     stats.AcceptSeq(k);
     stats.Processed(static_cast<double>(MonotonicMicros() - t0) / 1000.0);
-    Publish(bus, stats, "SENSOR_POINTS", cloud);
+    // A dropped frame is still simulated (the noise stream stays the same) and its truth is
+    // still published; only the cloud is not.
+    if (sim::DropFrame(options.sim.sensor.seed, k, options.drop_fraction)) {
+      stats.CountDropped(1);
+      stats.SetDetail(fmt::format("dropped {} of {} SENSOR_POINTS (drop_fraction {})",
+                                  stats.Dropped(), k + 1, options.drop_fraction));
+    } else {
+      Publish(bus, stats, "SENSOR_POINTS", cloud);
+    }
     Publish(bus, stats, "SIM_TRUTH", sim::ToTruthPose(simulation.SensorPose(k), k, utime));
     if (MonotonicMicros() >= next_progress) {
       spdlog::info("iteration {}/{}", k + 1, total);
@@ -91,6 +99,10 @@ int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double 
   }
   PublishStatus(bus, stats);
   spdlog::info("{} after {}/{} iterations", StopRequested() ? "stopped" : "done", k, total);
+  if (options.drop_fraction > 0.0) {
+    spdlog::info("dropped {} of {} SENSOR_POINTS frames (drop_fraction {})", stats.Dropped(), k,
+                 options.drop_fraction);
+  }
   return 0;
 }
 

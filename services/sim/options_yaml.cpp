@@ -180,11 +180,26 @@ ServiceOptions ReadServiceOptions(Reader reader) {
   RequirePositive(reader, "rate_hz", o.sim.rate_hz);
   reader.Read("start_delay", &o.start_delay);
   RequireNonNegative(reader, "start_delay", o.start_delay);
+  reader.Read("drop_fraction", &o.drop_fraction);
+  if (!(o.drop_fraction >= 0.0 && o.drop_fraction < 1.0)) {
+    reader.Fail("drop_fraction", "must be in [0, 1)");
+  }
   ReadWorld(reader.Child("world"), &o.sim.world);
   ReadTrajectory(reader.Child("trajectory"), &o.sim.trajectory);
   ReadSensor(reader.Child("sensor"), &o.sim.sensor);
   reader.Finish();
   return o;
+}
+
+bool DropFrame(uint64_t seed, int64_t seq, double fraction) {
+  if (fraction <= 0.0) return false;
+  // SplitMix64's finaliser (Steele, Lea, Flood, OOPSLA 2014) over seed and seq.
+  uint64_t z = seed * 0x9E3779B97F4A7C15ULL + static_cast<uint64_t>(seq) + 0x632BE59BD9B4E019ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  const double u = static_cast<double>(z >> 11) * 0x1.0p-53;  // uniform in [0, 1)
+  return u < fraction;
 }
 
 ServiceOptions LoadServiceOptions(const std::string& file) {
