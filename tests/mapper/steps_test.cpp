@@ -3,6 +3,9 @@
 // backtracking of a plane that leaves and re-enters the view (§II.A end).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "ideal_segmenter.hpp"
 #include "relplane/mapper/grouping.hpp"
 #include "relplane/mapper/localisation.hpp"
@@ -26,6 +29,44 @@ PlaneInput Wall(Vector2d p0, Vector2d p1) {
   in.vertices = {{p0.x(), p0.y(), -1}, {p1.x(), p1.y(), -1}, {p1.x(), p1.y(), 1},
                  {p0.x(), p0.y(), 1}};
   return in;
+}
+
+// The field of view is where cut edges pile up; one noisy edge close by must not widen it, or
+// the cut edges farther out pass for wall ends.
+TEST(LearnedFrustum, FindsTheBorderWhereCutEdgesPileUpDespiteANoisyCloseEdge) {
+  LearnedFrustum frustum;
+  const double half = M_PI / 4.0;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> bearing(-0.7, 0.7), range(1.0, 6.0);
+  for (int k = 0; k < 200; ++k) {
+    // Two cut edges a frame on the border, two wall ends anywhere inside.
+    const double r = range(rng);
+    frustum.Observe(r * Vector2d(std::cos(half), std::sin(half)));
+    frustum.Observe(r * Vector2d(std::cos(half), -std::sin(half)));
+    const double b = bearing(rng);
+    frustum.Observe(range(rng) * Vector2d(std::cos(b), std::sin(b)));
+  }
+  // A cut edge 0.5 m away displaced 4 cm outwards by noise: 4.6 degrees beyond the border.
+  frustum.Observe(0.5 * Vector2d(std::cos(half + 0.08), std::sin(half + 0.08)));
+  EXPECT_NEAR(frustum.Limit(), half, 0.01);
+  // A cut edge 4 m away, 1 cm inside the border by noise, is still cut; a wall end well inside
+  // is not.
+  const double inside = half - 0.01 / 4.0;
+  EXPECT_TRUE(frustum.Clipped(4.0 * Vector2d(std::cos(inside), std::sin(inside))));
+  EXPECT_FALSE(frustum.Clipped(4.0 * Vector2d(std::cos(half - 0.15), std::sin(half - 0.15))));
+}
+
+// A wall taken for seen whole (both edges steady) that is later seen longer was not whole:
+// an edge cut by the range stays put while the sensor turns in place. Its length is the whole
+// sighting's, not the mean with the partial one.
+TEST(RltPlane, FullLengthIgnoresSightingsShorterThanTheWallWasSeenLater) {
+  RltPlane plane(0, *MakeObservation(Wall({2, -1}, {2, 1}), 0, 0.3), 0.05, 3000);
+  for (int k = 1; k < 30; ++k) plane.Add(*MakeObservation(Wall({2, -1}, {2, 1}), k, 0.3));
+  plane.MarkFull(0, 29);
+  EXPECT_NEAR(plane.Length(), 2.0, 1e-9);
+  for (int k = 30; k < 60; ++k) plane.Add(*MakeObservation(Wall({2, -1}, {2, 2}), k, 0.3));
+  plane.MarkFull(30, 59);
+  EXPECT_NEAR(plane.Length(), 3.0, 1e-9);
 }
 
 TEST(Observation, ReducesAWallAndRejectsFloorsAndBadNumbers) {

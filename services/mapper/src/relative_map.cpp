@@ -22,7 +22,9 @@ bool PairThrough(const Comparison& c, const RltPlane& a, int i, int* j, Vector2d
     for (int jj = 0; jj < 2; ++jj) {
       // Quality of a pairing: its iterations, discounted by its spread over the whole interval.
       const double spread = s.PairStd(ii, jj) / kSpreadScale;
-      const double w = s.pair_count[ii][jj] / (1.0 + spread * spread);
+      // Through the other edge only when no direct pairing is as good: the full length adds
+      // its own error.
+      const double w = s.pair_count[ii][jj] / (1.0 + spread * spread) * (ii == i ? 1.0 : 0.5);
       if (w <= *weight) continue;
       Vector2d d = s.pair_sum[ii][jj] / s.pair_count[ii][jj];
       // e_hi = e_lo + L t: move from edge ii to edge i of A (in A's frame t = x axis).

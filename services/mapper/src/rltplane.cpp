@@ -3,6 +3,11 @@
 #include <algorithm>
 
 namespace relplane::mapper {
+namespace {
+
+constexpr double kFullLengthTolerance = 0.1;  // m, several times the edge noise
+
+}  // namespace
 
 RltPlane::RltPlane(int64_t id, Observation first, double phase_hysteresis, int max_observations)
     : id_(id),
@@ -44,7 +49,10 @@ void RltPlane::Add(Observation obs) {
       extreme_iteration_ = it;
     }
   }
-  max_length_ = std::max(max_length_, length);
+  if (length > max_length_) {
+    max_length_ = length;
+    full_dirty_ = !full_ranges_.empty();
+  }
   z_min_ = std::min(z_min_, obs.z_min);
   z_max_ = std::max(z_max_, obs.z_max);
   observations_.push_back(std::move(obs));
@@ -80,12 +88,16 @@ int64_t RltPlane::PhaseAt(int64_t iteration) const {
 double RltPlane::Length() const {
   if (full_ranges_.empty()) return max_length_;
   if (full_dirty_) {
-    // Mean visible length while seen whole: unbiased, unlike the maximum, under noise.
+    // Mean visible length while seen whole: unbiased, unlike the maximum, under noise. A wall
+    // is never seen longer than it is, so sightings well below the longest one were not whole
+    // after all (an edge cut by the range stays put while the sensor turns in place and passes
+    // for a static edge): they are left out.
     double sum = 0.0;
     int n = 0;
     for (auto r = full_ranges_.rbegin(); r != full_ranges_.rend() && n < 300; ++r) {
       for (size_t i = LowerBound(r->first); i < observations_.size() && n < 300; ++i) {
         if (observations_[i].iteration > r->second) break;
+        if (observations_[i].Length() < max_length_ - kFullLengthTolerance) continue;
         sum += observations_[i].Length();
         ++n;
       }
