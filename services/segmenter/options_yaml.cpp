@@ -50,6 +50,8 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   ReadPositive(r, "min_points", &o.min_points);
   ReadPositive(r, "cell_size", &o.cell_size);
   ReadPositive(r, "cell_reach", &o.cell_reach);
+  ReadNonNegative(r, "reach_spacings", &o.reach_spacings);
+  ReadPositive(r, "max_reach", &o.max_reach);
   ReadPositive(r, "max_cells", &o.max_cells);
   ReadPositive(r, "vertical_max_nz", &o.vertical_max_nz);
   r.Read("seed", &o.seed);

@@ -94,6 +94,78 @@ TEST(Segmenter, TwoWallsOnOneLineWithADoorBetweenAreTwoPlanes) {
   EXPECT_NEAR(after_start, 3.4f, 0.1f);
 }
 
+// A 2 m wide hallway seen along its length by a 160 x 120 sensor with a 90 degree view (as the
+// scenarios' sensor) that sees 8 m. Far down the hallway the side walls are seen at a grazing
+// angle: neighbouring pixel columns land up to 0.8 m apart along them, several cells of the
+// 10 cm grid. `door_from` > 0 cuts a 0.7 m door into the left wall there.
+std::vector<Rect> LongHallway(double door_from) {
+  const double l = 12.0, h = 2.5;
+  std::vector<Rect> world = {
+      {{-1, -1, 0}, {l, 0, 0}, {0, 2, 0}},  // floor
+      {{-1, -1, 0}, {0, 0, h}, {l, 0, 0}},  // right wall (y = -1)
+  };
+  if (door_from > 0) {
+    world.push_back({{-1, 1, 0}, {door_from + 1, 0, 0}, {0, 0, h}});
+    world.push_back({{door_from + 0.7, 1, 0}, {l - 1 - door_from - 0.7, 0, 0}, {0, 0, h}});
+  } else {
+    world.push_back({{-1, 1, 0}, {l, 0, 0}, {0, 0, h}});
+  }
+  return world;
+}
+
+Sensor GrazingSensor(double sigma) {
+  Sensor s = AtPose(0, 0, 0, sigma);
+  s.hfov_deg = 90.0;
+  s.max_range = 8.0;
+  return s;
+}
+
+TEST(Segmenter, SideWallSeenAtAGrazingAngleIsOnePlaneOutToTheFarEnd) {
+  for (double sigma : {0.0, 0.01}) {
+    SCOPED_TRACE("sigma " + std::to_string(sigma));
+    const Sensor sensor = GrazingSensor(sigma);
+    const Scan scan = Render(LongHallway(0.0), sensor);
+    float far_x = 0.0f;  // the furthest point of the left wall in view
+    for (size_t i = 0; i < scan.cloud.size(); ++i) {
+      if (scan.hit[i] == 2) far_x = std::max(far_x, scan.cloud.x[i]);
+    }
+    ASSERT_GT(far_x, 7.5f);
+    Segmenter segmenter;
+    const Result r = segmenter.Segment(scan.cloud);
+    EXPECT_GT(r.angular_step, 0.0f);
+    for (const Eigen::Vector3f& normal : {Eigen::Vector3f(0, -1, 0), Eigen::Vector3f(0, 1, 0)}) {
+      const auto walls = PlanesFacing(r.planes, normal, 1.0f);
+      ASSERT_EQ(walls.size(), 1u) << "wall facing " << normal.transpose();
+      float lo = 1e9f, hi = -1e9f;
+      for (const auto& v : walls[0].vertices) {
+        lo = std::min(lo, v.x());
+        hi = std::max(hi, v.x());
+      }
+      EXPECT_LT(lo, 1.5f);
+      EXPECT_GT(hi, far_x - 0.1f);
+    }
+  }
+}
+
+TEST(Segmenter, DoorGapStillSplitsAWallSeenAtAGrazingAngle) {
+  const Sensor sensor = GrazingSensor(0.01);
+  const Scan scan = Render(LongHallway(4.5), sensor);
+  Segmenter segmenter;
+  const auto left = PlanesFacing(segmenter.Segment(scan.cloud).planes, -Eigen::Vector3f::UnitY(),
+                                 1.0f);
+  ASSERT_EQ(left.size(), 2u);
+  float before_end = -1e9f, after_start = 1e9f;
+  for (const auto& p : left) {
+    for (const auto& v : p.vertices) {
+      if (p.centroid.x() < 4.85f) before_end = std::max(before_end, v.x());
+      if (p.centroid.x() > 4.85f) after_start = std::min(after_start, v.x());
+    }
+  }
+  // Pixel columns land about 0.35 m apart there: the pieces end within one spacing of the door.
+  EXPECT_NEAR(before_end, 4.5f, 0.4f);
+  EXPECT_NEAR(after_start, 5.2f, 0.4f);
+}
+
 TEST(Segmenter, PartlySeenWallGetsTheCornersOfItsVisibleRectangle) {
   // A 10 m wide, 2.5 m high wall 3 m ahead: the 60 x 46 degree view cuts it left, right and
   // at the top; its bottom edge (the floor line, 1 m below the sensor) is in view.

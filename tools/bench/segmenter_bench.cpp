@@ -62,6 +62,17 @@ void BM_Unorganized640x480Cold(benchmark::State& state) {
   Run(state, frames, Options{}, true);
 }
 
+// Between the two: the same office, organized 640x480 (image order kept) and unorganized
+// 320x240.
+void BM_Organized640x480Stream(benchmark::State& state) {
+  static const auto frames = OfficeFrames(640, 480, false);
+  Run(state, frames, Options{}, false);
+}
+void BM_Unorganized320x240Stream(benchmark::State& state) {
+  static const auto frames = OfficeFrames(320, 240, true);
+  Run(state, frames, Options{}, false);
+}
+
 std::vector<Cloud> KinectFrames() {
   std::vector<Cloud> frames;
   for (const char* name : {"frame_20121214T142255.814212.pcd", "frame_20121214T142256.068683.pcd",
@@ -99,6 +110,8 @@ SEGMENTER_BENCHMARK(BM_Synthetic160x120Stream);
 SEGMENTER_BENCHMARK(BM_Synthetic160x120Cold);
 SEGMENTER_BENCHMARK(BM_Unorganized640x480Stream);
 SEGMENTER_BENCHMARK(BM_Unorganized640x480Cold);
+SEGMENTER_BENCHMARK(BM_Organized640x480Stream);
+SEGMENTER_BENCHMARK(BM_Unorganized320x240Stream);
 SEGMENTER_BENCHMARK(BM_Kinect640x480Stream);
 SEGMENTER_BENCHMARK(BM_Kinect640x480Cold);
 

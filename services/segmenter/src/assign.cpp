@@ -9,20 +9,13 @@ namespace {
 // Two planes whose normals differ by more than this meet in a line (a corner, not a step).
 constexpr float kCrossingAngleDeg = 20.0f;
 
-// Best and second-best scores per point. Plain arrays and selects keep the loop branch-free so
-// it vectorises; the range-noise variant needs one division per point and plane.
-struct Ranking {
-  std::vector<float> best, second;
-  std::vector<int32_t> label, second_label;
-};
+// Points are ranked in blocks that stay in L1 cache while every plane is scored against them.
+constexpr size_t kBlock = 512;
 
 // Squared distances of all points to one plane, in units of each point's threshold.
-void Scores(const Cloud& cloud, const EmPlane& plane, float t2, const float* q,
+void Scores(size_t n, const float* __restrict x, const float* __restrict y,
+            const float* __restrict z, const EmPlane& plane, float t2, const float* q,
             float* __restrict out) {
-  const size_t n = cloud.size();
-  const float* __restrict x = cloud.x.data();
-  const float* __restrict y = cloud.y.data();
-  const float* __restrict z = cloud.z.data();
   const float nx = plane.normal.x(), ny = plane.normal.y(), nz = plane.normal.z(), d = plane.d;
   const float var = plane.sigma * plane.sigma;
   if (q == nullptr) {
@@ -58,44 +51,55 @@ void Rank(size_t n, const float* __restrict score, int32_t id, float* __restrict
 
 }  // namespace
 
-std::vector<int32_t> AssignPoints(const Cloud& cloud, const std::vector<EmPlane>& planes,
-                                  const Options& options, std::vector<uint8_t>* ambiguous) {
+void AssignPoints(const Cloud& cloud, const std::vector<EmPlane>& planes, const Options& options,
+                  std::vector<int32_t>* labels, std::vector<uint8_t>* ambiguous) {
   const size_t n = cloud.size();
+  const size_t k = planes.size();
+  labels->resize(n);
+  if (ambiguous) ambiguous->resize(n);
+  // Only planes that cross count as ambiguous: near-parallel neighbours (a box lid just above
+  // the floor) overlap in a band but do not meet in a line.
+  const float cos_crossing = std::cos(kCrossingAngleDeg * static_cast<float>(M_PI) / 180.0f);
+  std::vector<uint8_t> crossing(k * k);
+  for (size_t a = 0; a < k; ++a) {
+    for (size_t b = 0; b < k; ++b) {
+      crossing[a * k + b] = std::fabs(planes[a].normal.dot(planes[b].normal)) < cos_crossing;
+    }
+  }
   // Scores are squared distances in units of the point's threshold,
   // d^2 / (t^2 (sigma^2 + (k r^2)^2)): below 1 is an inlier, the smallest wins.
-  Ranking r;
-  r.best.assign(n, 1.0f);
-  r.second.assign(n, 1.0f);
-  r.label.assign(n, -1);
-  r.second_label.assign(n, -1);
   const float t2 = options.inlier_sigmas * options.inlier_sigmas;
   const float k2 = options.range_noise * options.range_noise;
-  std::vector<float> q;
-  if (k2 > 0.0f) {
-    q.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-      const float r2 = cloud.x[i] * cloud.x[i] + cloud.y[i] * cloud.y[i] + cloud.z[i] * cloud.z[i];
-      q[i] = k2 * r2 * r2;
+  alignas(64) float best[kBlock], second[kBlock], score[kBlock], q[kBlock];
+  alignas(64) int32_t label[kBlock], second_label[kBlock];
+  for (size_t start = 0; start < n; start += kBlock) {
+    const size_t m = std::min(kBlock, n - start);
+    const float* x = cloud.x.data() + start;
+    const float* y = cloud.y.data() + start;
+    const float* z = cloud.z.data() + start;
+    for (size_t i = 0; i < m; ++i) {
+      best[i] = 1.0f;
+      second[i] = 1.0f;
+      label[i] = -1;
+      second_label[i] = -1;
+    }
+    if (k2 > 0.0f) {
+      for (size_t i = 0; i < m; ++i) {
+        const float r2 = x[i] * x[i] + y[i] * y[i] + z[i] * z[i];
+        q[i] = k2 * r2 * r2;
+      }
+    }
+    for (size_t j = 0; j < k; ++j) {
+      Scores(m, x, y, z, planes[j], t2, k2 > 0.0f ? q : nullptr, score);
+      Rank(m, score, static_cast<int32_t>(j), best, second, label, second_label);
+    }
+    std::copy(label, label + m, labels->data() + start);
+    if (!ambiguous) continue;
+    uint8_t* amb = ambiguous->data() + start;
+    for (size_t i = 0; i < m; ++i) {
+      amb[i] = label[i] >= 0 && second_label[i] >= 0 && crossing[label[i] * k + second_label[i]];
     }
   }
-  std::vector<float> score(n);
-  for (size_t j = 0; j < planes.size(); ++j) {
-    Scores(cloud, planes[j], t2, q.empty() ? nullptr : q.data(), score.data());
-    Rank(n, score.data(), static_cast<int32_t>(j), r.best.data(), r.second.data(), r.label.data(),
-         r.second_label.data());
-  }
-  if (ambiguous) {
-    // Only planes that cross count: near-parallel neighbours (a box lid just above the floor)
-    // overlap in a band but do not meet in a line.
-    const float cos_crossing = std::cos(kCrossingAngleDeg * static_cast<float>(M_PI) / 180.0f);
-    ambiguous->assign(n, 0);
-    for (size_t i = 0; i < n; ++i) {
-      const int32_t a = r.label[i], b = r.second_label[i];
-      if (a < 0 || b < 0) continue;
-      (*ambiguous)[i] = std::fabs(planes[a].normal.dot(planes[b].normal)) < cos_crossing;
-    }
-  }
-  return std::move(r.label);
 }
 
 }  // namespace relplane::segmenter

@@ -3,42 +3,19 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
+#include "piece_grid.hpp"
 #include "relplane/segmenter/hull.hpp"
 #include "relplane/segmenter/merge_pieces.hpp"
-#include "relplane/segmenter/moments.hpp"
 
 namespace relplane::segmenter {
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
 // The final fit of a piece uses its points within this many RMS of the first fit.
 constexpr float kTrimSigmas = 2.5f;
 
-// In-plane axes: for a vertical plane u is horizontal and v points up, so the extent rectangle
-// follows the wall's vertical edges; otherwise any orthonormal pair.
-void PlaneAxes(const Eigen::Vector3f& n, bool vertical, Eigen::Vector3f* u, Eigen::Vector3f* v) {
-  if (vertical) {
-    *u = Eigen::Vector3f::UnitZ().cross(n);
-  } else {
-    *u = (std::fabs(n.x()) < 0.9f ? Eigen::Vector3f::UnitX() : Eigen::Vector3f::UnitY()).cross(n);
-  }
-  u->normalize();
-  *v = n.cross(*u);
-}
-
-// Per occupied cell: point count, moments about the plane's centroid, and (second pass) the
-// extreme points along the piece's own axes for the hull.
-struct Cell {
-  int ix = 0, iy = 0;
-  int solid = 0;  // points that are not on the strip where two planes meet
-  LocalMoments all;
-  LocalMoments trimmed;  // second pass: the points near the piece's first fit
-  Eigen::Vector2f lo_a{kInf, 0}, hi_a{-kInf, 0}, lo_b{0, kInf}, hi_b{0, -kInf};
-};
-
 struct Piece {
+  int plane = 0;  // the EM plane it came from
   int count = 0;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d sum_sq = Eigen::Matrix3d::Zero();
@@ -55,55 +32,6 @@ struct Piece {
   Eigen::Vector3f u, v;
   float a_min = kInf, a_max = -kInf, b_min = kInf, b_max = -kInf;
 };
-
-// Connected components of the solid cells (8-connected within `reach` cells); returns the
-// piece index of every cell, numbered in order of the cells' first appearance, -1 for cells
-// holding only points on the strip where two planes meet: along a floor, that strip would
-// otherwise bridge the door between two walls.
-int LabelCells(const std::vector<Cell>& cells, const std::vector<int>& slot_of, int w, int h,
-               int reach, std::vector<int>* piece_of) {
-  piece_of->assign(cells.size(), -1);
-  int pieces = 0;
-  std::vector<int> stack;
-  for (size_t start = 0; start < cells.size(); ++start) {
-    if ((*piece_of)[start] >= 0 || cells[start].solid == 0) continue;
-    (*piece_of)[start] = pieces;
-    stack.push_back(static_cast<int>(start));
-    while (!stack.empty()) {
-      const Cell& c = cells[stack.back()];
-      stack.pop_back();
-      for (int dy = -reach; dy <= reach; ++dy) {
-        const int y = c.iy + dy;
-        if (y < 0 || y >= h) continue;
-        for (int dx = -reach; dx <= reach; ++dx) {
-          const int x = c.ix + dx;
-          if (x < 0 || x >= w) continue;
-          const int other = slot_of[static_cast<size_t>(y) * w + x];
-          if (other < 0 || (*piece_of)[other] >= 0 || cells[other].solid == 0) continue;
-          (*piece_of)[other] = pieces;
-          stack.push_back(other);
-        }
-      }
-    }
-    ++pieces;
-  }
-  return pieces;
-}
-
-// A cell whose eight neighbours belong to its piece lies inside the piece: its points cannot
-// shape the hull (to within a cell), so they are left out of it.
-bool Interior(const Cell& c, const std::vector<int>& slot_of, const std::vector<int>& piece_of,
-              int64_t w, int64_t h) {
-  if (c.ix == 0 || c.iy == 0 || c.ix == w - 1 || c.iy == h - 1) return false;
-  const int piece = piece_of[slot_of[static_cast<size_t>(c.iy) * w + c.ix]];
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      const int other = slot_of[static_cast<size_t>(c.iy + dy) * w + c.ix + dx];
-      if (other < 0 || piece_of[other] != piece) return false;
-    }
-  }
-  return true;
-}
 
 // Least-squares refit of a piece from its moments about `origin`; normal towards the sensor.
 void Refit(const Eigen::Vector3f& origin, Piece* piece) {
@@ -143,79 +71,72 @@ void TrimmedRefit(Piece* p) {
   p->trimmed_centroid = trimmed.out.centroid;
 }
 
-void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
-                   const std::vector<uint8_t>& ambiguous, const EmPlane& plane,
-                   const Options& options, std::vector<PieceStats>* out,
-                   std::vector<int32_t>* piece_labels) {
-  // Grid in the EM plane's coordinates, origin at its centroid.
-  const Eigen::Vector3f origin = plane.centroid;
-  Eigen::Vector3f u, v;
-  PlaneAxes(plane.normal, std::fabs(plane.normal.z()) < options.vertical_max_nz, &u, &v);
-  std::vector<float> a(idx.size()), b(idx.size());
-  float a_lo = kInf, a_hi = -kInf, b_lo = kInf, b_hi = -kInf;
-  for (size_t k = 0; k < idx.size(); ++k) {
-    const Eigen::Vector3f q = cloud.Point(idx[k]) - origin;
-    a[k] = u.dot(q);
-    b[k] = v.dot(q);
-    a_lo = std::min(a_lo, a[k]);
-    a_hi = std::max(a_hi, a[k]);
-    b_lo = std::min(b_lo, b[k]);
-    b_hi = std::max(b_hi, b[k]);
-  }
-  float cell = options.cell_size;
-  int64_t w = 0, h = 0;
-  for (;;) {  // coarsen until the grid fits: a bounded cost whatever the plane's extent
-    w = static_cast<int64_t>((a_hi - a_lo) / cell) + 1;
-    h = static_cast<int64_t>((b_hi - b_lo) / cell) + 1;
-    if (w * h <= options.max_cells) break;
-    cell *= 2.0f;
-  }
-  std::vector<int> slot_of(static_cast<size_t>(w * h), -1);
-  std::vector<Cell> cells;
-  std::vector<int> cell_of_point(idx.size());
-  for (size_t k = 0; k < idx.size(); ++k) {
-    const int ix = std::min<int>(w - 1, static_cast<int>((a[k] - a_lo) / cell));
-    const int iy = std::min<int>(h - 1, static_cast<int>((b[k] - b_lo) / cell));
-    int& slot = slot_of[static_cast<size_t>(iy) * w + ix];
-    if (slot < 0) {
-      slot = static_cast<int>(cells.size());
-      cells.emplace_back();
-      cells.back().ix = ix;
-      cells.back().iy = iy;
+// What the second pass does with a cell's points.
+constexpr uint8_t kTrimPoints = 1;  // some may lie beyond the trim: test each
+constexpr uint8_t kExtremes = 2;    // a boundary cell: its points may shape the extent
+
+// Whether every point of the cell lies within the piece's trim: the distance to the piece's
+// plane is linear, so its extremes over the cell's box (grid cell x range of distances to the
+// EM plane) are at the box's corners.
+bool WithinTrim(const PlaneGrid& g, const Cell& cell, const CellMoments& m, const Piece& p) {
+  const float half = 0.5f * g.cell;
+  const Eigen::Vector3f centre = g.origin + (g.a_lo + (cell.ix + 0.5f) * g.cell) * g.u +
+                                 (g.b_lo + (cell.iy + 0.5f) * g.cell) * g.v +
+                                 0.5f * (m.e_lo + m.e_hi) * g.n;
+  const Eigen::Vector3f& n = p.out.normal;
+  const float f = n.dot(centre - p.out.centroid);
+  const float spread = half * (std::fabs(n.dot(g.u)) + std::fabs(n.dot(g.v))) +
+                       0.5f * (m.e_hi - m.e_lo) * std::fabs(n.dot(g.n));
+  constexpr float kSlack = 1e-4f;  // metres: rounding of the cell bounds
+  return std::fabs(f) + spread < p.trim - kSlack;
+}
+
+// Sets each cell's mode for the second pass; cells whose points all lie within the trim give
+// their moments to the trimmed fit at once.
+void PlanSecondPass(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces) {
+  const size_t num_cells = w->cells.size();
+  w->mode.assign(num_cells, 0);
+  w->finish.assign(num_cells, CellFinish{});
+  for (size_t s = 0; s < num_cells; ++s) {
+    const int32_t piece = w->piece_of[s];
+    if (piece < 0 || !(*pieces)[piece].kept) continue;
+    Piece& p = (*pieces)[piece];
+    const Cell& cell = w->cells[s];
+    const CellMoments& m = w->moments[s];
+    if (!Interior(*w, s)) w->mode[s] |= kExtremes;
+    if (WithinTrim(w->grids[cell.plane], cell, m, p)) {
+      m.all.AddTo(p.out.centroid, &p.trimmed_count, &p.trimmed_sum, &p.trimmed_sum_sq);
+    } else {
+      w->mode[s] |= kTrimPoints;
     }
-    cell_of_point[k] = slot;
-    Cell& c = cells[slot];
-    c.solid += ambiguous.empty() || !ambiguous[idx[k]];
-    c.all.Add(cloud.Point(idx[k]));
   }
-  std::vector<int> piece_of;
-  const int num_pieces = LabelCells(cells, slot_of, static_cast<int>(w), static_cast<int>(h),
-                                    std::max(1, options.cell_reach), &piece_of);
-  std::vector<Piece> pieces(num_pieces);
-  for (size_t s = 0; s < cells.size(); ++s) {
-    if (piece_of[s] < 0) continue;
-    Piece& p = pieces[piece_of[s]];
-    cells[s].all.AddTo(origin, &p.count, &p.sum, &p.sum_sq);
-  }
-  for (Piece& p : pieces) {
-    p.kept = p.count >= options.min_points;
-    if (!p.kept) continue;
-    Refit(origin, &p);
-    p.vertical = std::fabs(p.out.normal.z()) < options.vertical_max_nz;
-    PlaneAxes(p.out.normal, p.vertical, &p.u, &p.v);
-    p.trim = kTrimSigmas * std::max(p.out.rms, options.sigma_min);
-  }
-  // Second pass: extents along each piece's own refitted axes, and the moments of the points
-  // near the fit, so the final fit ignores what the piece caught from a neighbouring surface.
-  for (size_t k = 0; k < idx.size(); ++k) {
-    Cell& c = cells[cell_of_point[k]];
-    const int piece = piece_of[cell_of_point[k]];
-    if (piece < 0 || !pieces[piece].kept) continue;
-    Piece& p = pieces[piece];
-    if (piece_labels) (*piece_labels)[idx[k]] = piece;  // local index, made global below
-    const Eigen::Vector3f q = cloud.Point(idx[k]) - p.out.centroid;
+}
+
+// Second pass over the points, in cloud order, of the cells that need it: the moments of the
+// points near the first fit, so the final fit ignores what the piece caught from a
+// neighbouring surface; extents along each piece's own refitted axes. An interior cell cannot
+// hold an extreme point (to within a cell's rotation between the EM and the piece's axes).
+void TrimAndExtend(const Cloud& cloud, PieceWorkspace::Buffers* w, std::vector<Piece>* pieces,
+                   std::vector<int32_t>* piece_labels) {
+  const float* x = cloud.x.data();
+  const float* y = cloud.y.data();
+  const float* z = cloud.z.data();
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    const int32_t cell = w->cell_of_point[i];
+    if (cell < 0) continue;
+    if (piece_labels) {
+      const int32_t piece = w->piece_of[cell];
+      if (piece >= 0 && (*pieces)[piece].kept) (*piece_labels)[i] = piece;  // made global later
+    }
+    const uint8_t mode = w->mode[cell];
+    if (mode == 0) continue;
+    Piece& p = (*pieces)[w->piece_of[cell]];
+    CellFinish& c = w->finish[cell];
+    const Eigen::Vector3f point(x[i], y[i], z[i]);
+    const Eigen::Vector3f q = point - p.out.centroid;
+    if ((mode & kTrimPoints) && std::fabs(p.out.normal.dot(q)) <= p.trim) c.trimmed.Add(point);
+    if (!(mode & kExtremes)) continue;
     const Eigen::Vector2f ab(p.u.dot(q), p.v.dot(q));
-    if (std::fabs(p.out.normal.dot(q)) <= p.trim) c.trimmed.Add(cloud.Point(idx[k]));
     if (p.vertical) {
       p.a_min = std::min(p.a_min, ab.x());
       p.a_max = std::max(p.a_max, ab.x());
@@ -228,25 +149,31 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
     if (ab.y() < c.lo_b.y()) c.lo_b = ab;
     if (ab.y() > c.hi_b.y()) c.hi_b = ab;
   }
-  for (size_t s = 0; s < cells.size(); ++s) {
-    if (piece_of[s] < 0 || !pieces[piece_of[s]].kept) continue;
-    Piece& p = pieces[piece_of[s]];
-    cells[s].trimmed.AddTo(p.out.centroid, &p.trimmed_count, &p.trimmed_sum, &p.trimmed_sum_sq);
-  }
-  std::vector<std::vector<Eigen::Vector2f>> hull_points(num_pieces);
-  for (size_t s = 0; s < cells.size(); ++s) {
-    if (piece_of[s] < 0) continue;
-    const Piece& p = pieces[piece_of[s]];
-    if (!p.kept || p.vertical || Interior(cells[s], slot_of, piece_of, w, h)) continue;
-    for (const auto& e : {cells[s].lo_a, cells[s].hi_a, cells[s].lo_b, cells[s].hi_b}) {
-      hull_points[piece_of[s]].push_back(e);
-    }
-  }
-  std::vector<int32_t> global(num_pieces, -1);
-  for (int i = 0; i < num_pieces; ++i) {
-    Piece& p = pieces[i];
+}
+
+// The kept pieces, described: trimmed refit and extent polygon. `index` receives each piece's
+// index in `out` (-1 when dropped).
+void Describe(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces, std::vector<PieceStats>* out,
+              std::vector<int32_t>* index) {
+  const size_t num_cells = w->cells.size();
+  std::vector<std::vector<Eigen::Vector2f>> hull_points(pieces->size());
+  for (size_t s = 0; s < num_cells; ++s) {
+    const int32_t piece = w->piece_of[s];
+    if (piece < 0) continue;
+    Piece& p = (*pieces)[piece];
     if (!p.kept) continue;
-    global[i] = static_cast<int32_t>(out->size());
+    const CellFinish& c = w->finish[s];
+    if (w->mode[s] & kTrimPoints) {
+      c.trimmed.AddTo(p.out.centroid, &p.trimmed_count, &p.trimmed_sum, &p.trimmed_sum_sq);
+    }
+    if (p.vertical || !(w->mode[s] & kExtremes)) continue;
+    for (const auto& e : {c.lo_a, c.hi_a, c.lo_b, c.hi_b}) hull_points[piece].push_back(e);
+  }
+  index->assign(pieces->size(), -1);
+  for (size_t i = 0; i < pieces->size(); ++i) {
+    Piece& p = (*pieces)[i];
+    if (!p.kept) continue;
+    (*index)[i] = static_cast<int32_t>(out->size());
     TrimmedRefit(&p);
     auto lift = [&p](float pa, float pb) {
       return Eigen::Vector3f(p.out.centroid + pa * p.u + pb * p.v);
@@ -255,7 +182,7 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
       p.out.vertices = {lift(p.a_min, p.b_min), lift(p.a_max, p.b_min), lift(p.a_max, p.b_max),
                         lift(p.a_min, p.b_max)};
     } else {
-      for (const auto& corner : ConvexHull(hull_points[i])) {
+      for (const auto& corner : ConvexHull(std::move(hull_points[i]))) {
         p.out.vertices.push_back(lift(corner.x(), corner.y()));
       }
     }
@@ -263,50 +190,62 @@ void DescribePlane(const Cloud& cloud, const std::vector<int>& idx,
     if (p.trimmed_count >= 3) p.out.centroid = p.trimmed_centroid;
     out->push_back(PieceStats{std::move(p.out), p.scatter, p.vertical});
   }
-  if (piece_labels) {
-    for (int i : idx) {
-      int32_t& l = (*piece_labels)[i];
-      if (l >= 0) l = global[l];
-    }
-  }
 }
 
 }  // namespace
 
+PieceWorkspace::PieceWorkspace() : buffers_(std::make_unique<Buffers>()) {}
+PieceWorkspace::~PieceWorkspace() = default;
+PieceWorkspace::PieceWorkspace(PieceWorkspace&&) noexcept = default;
+PieceWorkspace& PieceWorkspace::operator=(PieceWorkspace&&) noexcept = default;
+
 std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<int32_t>& labels,
                                           const std::vector<uint8_t>& ambiguous,
                                           const std::vector<EmPlane>& planes,
-                                          const Options& options,
-                                          std::vector<int32_t>* piece_labels) {
+                                          const Options& options, float angular_step,
+                                          std::vector<int32_t>* piece_labels,
+                                          PieceWorkspace* workspace) {
+  PieceWorkspace local;
+  PieceWorkspace::Buffers& w = workspace ? workspace->Get() : local.Get();
   if (piece_labels) piece_labels->assign(cloud.size(), -1);
-  // Bucket the point indices by label, keeping each bucket in ascending order.
-  std::vector<std::vector<int>> members(planes.size());
-  for (size_t i = 0; i < labels.size(); ++i) {
-    if (labels[i] >= 0) members[labels[i]].push_back(static_cast<int>(i));
+  BinPoints(cloud, labels, ambiguous, planes, options, &w);
+  std::vector<Piece> pieces(LabelPieces(planes, options, angular_step, &w));
+  for (size_t s = 0; s < w.cells.size(); ++s) {
+    if (w.piece_of[s] < 0) continue;
+    Piece& p = pieces[w.piece_of[s]];
+    p.plane = w.cells[s].plane;
+    w.moments[s].all.AddTo(w.grids[p.plane].origin, &p.count, &p.sum, &p.sum_sq);
   }
+  for (Piece& p : pieces) {
+    p.kept = p.count >= options.min_points;
+    if (!p.kept) continue;
+    Refit(w.grids[p.plane].origin, &p);
+    p.vertical = std::fabs(p.out.normal.z()) < options.vertical_max_nz;
+    PlaneAxes(p.out.normal, p.vertical, &p.u, &p.v);
+    p.trim = kTrimSigmas * std::max(p.out.rms, options.sigma_min);
+  }
+  PlanSecondPass(&w, &pieces);
+  TrimAndExtend(cloud, &w, &pieces, piece_labels);
   std::vector<PieceStats> described;
-  for (size_t j = 0; j < planes.size(); ++j) {
-    if (static_cast<int>(members[j].size()) < options.min_points) continue;
-    DescribePlane(cloud, members[j], ambiguous, planes[j], options, &described, piece_labels);
-  }
+  std::vector<int32_t> index;
+  Describe(&w, &pieces, &described, &index);
+
   std::vector<int32_t> merged_into;
   std::vector<PieceStats> merged = MergeTouchingPieces(std::move(described), options, &merged_into);
-  std::vector<DetectedPlane> result;
-  for (auto& m : merged) result.push_back(std::move(m.plane));
-  std::vector<int32_t> order(result.size());
+  std::vector<int32_t> order(merged.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int32_t>(i);
-  std::stable_sort(order.begin(), order.end(), [&result](int32_t x, int32_t y) {
-    return result[x].num_points > result[y].num_points;
+  std::stable_sort(order.begin(), order.end(), [&merged](int32_t a, int32_t b) {
+    return merged[a].plane.num_points > merged[b].plane.num_points;
   });
   std::vector<DetectedPlane> sorted;
   std::vector<int32_t> rank(order.size());
   for (size_t r = 0; r < order.size(); ++r) {
     rank[order[r]] = static_cast<int32_t>(r);
-    sorted.push_back(std::move(result[order[r]]));
+    sorted.push_back(std::move(merged[order[r]].plane));
   }
   if (piece_labels) {
     for (int32_t& l : *piece_labels) {
-      if (l >= 0) l = rank[merged_into[l]];
+      if (l >= 0) l = rank[merged_into[index[l]]];
     }
   }
   return sorted;

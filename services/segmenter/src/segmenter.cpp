@@ -2,32 +2,56 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "relplane/segmenter/assign.hpp"
 #include "relplane/segmenter/extent.hpp"
 #include "relplane/segmenter/proposals.hpp"
+#include "relplane/segmenter/spacing.hpp"
 
 namespace relplane::segmenter {
 namespace {
 
-// Keeps the finite points only.
-Cloud FiniteOnly(const Cloud& in) {
-  Cloud out;
-  out.Reserve(in.size());
+// NaN and inf have all exponent bits set: the largest masked exponent tells, in one
+// branch-free pass that vectorises.
+bool AllFinite(const std::vector<float>& v) {
+  constexpr uint32_t kExponent = 0x7f800000u;
+  uint32_t largest = 0;
+  for (float f : v) {
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    largest = std::max(largest, bits & kExponent);
+  }
+  return largest != kExponent;
+}
+
+bool AllFinite(const Cloud& in) { return AllFinite(in.x) && AllFinite(in.y) && AllFinite(in.z); }
+
+// Keeps the finite points only; `out`'s buffers are reused.
+void FiniteOnly(const Cloud& in, Cloud* out) {
+  out->x.clear();
+  out->y.clear();
+  out->z.clear();
+  out->Reserve(in.size());
   for (size_t i = 0; i < in.size(); ++i) {
     if (std::isfinite(in.x[i]) && std::isfinite(in.y[i]) && std::isfinite(in.z[i])) {
-      out.Add(in.x[i], in.y[i], in.z[i]);
+      out->Add(in.x[i], in.y[i], in.z[i]);
     }
   }
-  return out;
 }
 
 // Stratified subsample of at most `count` points: one point at a jittered position in each of
 // `count` equal strides, so no lattice aliases with the row layout of an organized cloud.
-Cloud Subsample(const Cloud& in, int count, uint32_t seed) {
-  if (static_cast<int>(in.size()) <= count) return in;
-  Cloud out;
+void Subsample(const Cloud& in, int count, uint32_t seed, Cloud* sample) {
+  Cloud& out = *sample;
+  out.x.clear();
+  out.y.clear();
+  out.z.clear();
+  if (static_cast<int>(in.size()) <= count) {
+    out = in;
+    return;
+  }
   out.Reserve(count);
   const double stride = static_cast<double>(in.size()) / count;
   uint32_t state = seed * 747796405u + 2891336453u;
@@ -37,7 +61,6 @@ Cloud Subsample(const Cloud& in, int count, uint32_t seed) {
     const size_t i = std::min(in.size() - 1, static_cast<size_t>((k + jitter) * stride));
     out.Add(in.x[i], in.y[i], in.z[i]);
   }
-  return out;
 }
 
 std::vector<int> Unexplained(const Responsibilities& resp) {
@@ -84,7 +107,9 @@ Segmenter::Segmenter(Options options) : options_(options) {}
 Result Segmenter::Segment(const Cloud& input) {
   Result result;
   result.input_points = static_cast<int64_t>(input.size());
-  const Cloud cloud = FiniteOnly(input);
+  const bool all_finite = AllFinite(input);
+  if (!all_finite) FiniteOnly(input, &finite_);
+  const Cloud& cloud = all_finite ? input : finite_;
   result.dropped_nonfinite = result.input_points - static_cast<int64_t>(cloud.size());
   if (cloud.empty()) {
     previous_.clear();
@@ -95,7 +120,8 @@ Result Segmenter::Segment(const Cloud& input) {
   const int em_points =
       std::clamp(static_cast<int>(cloud.size() / std::max(1, options_.em_fraction)),
                  options_.em_points_min, std::max(options_.em_points_min, options_.em_points_max));
-  const Cloud sample = Subsample(cloud, em_points, options_.seed);
+  Subsample(cloud, em_points, options_.seed, &sample_);
+  const Cloud& sample = sample_;
   const float ratio = static_cast<float>(sample.size()) / static_cast<float>(cloud.size());
   const int min_support = std::max(options_.min_em_points,
                                    static_cast<int>(std::ceil(options_.min_points * ratio * 0.5f)));
@@ -125,16 +151,20 @@ Result Segmenter::Segment(const Cloud& input) {
   result.em_planes = static_cast<int>(planes.size());
 
   // One hard assignment pass over every point, then connected pieces and their extents.
-  std::vector<uint8_t> ambiguous;
-  const std::vector<int32_t> labels = AssignPoints(cloud, planes, options_, &ambiguous);
+  // The sensor's angular step, learnt from the sample, sets how far apart samples land on each
+  // plane: far, grazing parts of a wall stay connected.
+  result.angular_step = EstimateAngularStep(sample, cloud.size());
+  AssignPoints(cloud, planes, options_, &labels_, &ambiguous_);
   result.assigned_points =
-      std::count_if(labels.begin(), labels.end(), [](int32_t l) { return l >= 0; });
+      std::count_if(labels_.begin(), labels_.end(), [](int32_t l) { return l >= 0; });
   if (!options_.keep_labels) {
-    result.planes = DescribePieces(cloud, labels, ambiguous, planes, options_);
+    result.planes = DescribePieces(cloud, labels_, ambiguous_, planes, options_,
+                                   result.angular_step, nullptr, &workspace_);
     return result;
   }
   std::vector<int32_t> pieces;
-  result.planes = DescribePieces(cloud, labels, ambiguous, planes, options_, &pieces);
+  result.planes = DescribePieces(cloud, labels_, ambiguous_, planes, options_,
+                                 result.angular_step, &pieces, &workspace_);
   // Back to the input's indexing: the non-finite points were left out of `cloud`.
   result.labels.assign(input.size(), -1);
   for (size_t i = 0, k = 0; i < input.size(); ++i) {

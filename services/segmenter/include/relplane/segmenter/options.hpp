@@ -53,7 +53,11 @@ struct Options {
   float inlier_sigmas = 3.0f;    // a point supports its nearest plane within this many sigma
   int min_points = 150;          // pieces with fewer supporting points are dropped
   float cell_size = 0.1f;        // metres, occupancy grid in the plane for connected pieces
-  int cell_reach = 2;            // cells: occupied cells this close are connected
+  int cell_reach = 2;            // cells: occupied cells this close are connected, at least
+  // Further where the samples land further apart (far away, grazing incidence): cells connect
+  // within this many expected sample spacings (learnt from the cloud; 0: cell_reach only) ...
+  float reach_spacings = 1.5f;
+  float max_reach = 1.5f;  // ... but never beyond this, metres
   int max_cells = 250000;        // the grid coarsens beyond this many cells per plane
   float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
 

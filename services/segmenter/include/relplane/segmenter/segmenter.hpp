@@ -6,6 +6,7 @@
 
 #include "relplane/segmenter/cloud.hpp"
 #include "relplane/segmenter/em.hpp"
+#include "relplane/segmenter/extent.hpp"
 #include "relplane/segmenter/options.hpp"
 
 namespace relplane::segmenter {
@@ -17,6 +18,7 @@ struct Result {
   int64_t assigned_points = 0;    // points supporting some EM plane before the split
   int em_planes = 0;              // mixture components after EM
   int rounds = 0;                 // EM rounds run
+  float angular_step = 0.0f;      // radians, the sensor's sampling step learnt from the cloud
   // With options.keep_labels: for every input point, its index in `planes` or -1.
   std::vector<int32_t> labels;
 };
@@ -37,6 +39,11 @@ class Segmenter {
  private:
   Options options_;
   std::vector<EmPlane> previous_;
+  // Buffers reused from frame to frame (the segmenter is long-lived): no per-cloud allocation.
+  Cloud finite_, sample_;
+  std::vector<int32_t> labels_;
+  std::vector<uint8_t> ambiguous_;
+  PieceWorkspace workspace_;
 };
 
 }  // namespace relplane::segmenter

@@ -1,0 +1,181 @@
+#include "piece_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "relplane/segmenter/spacing.hpp"
+
+namespace relplane::segmenter {
+namespace {
+
+int32_t Find(std::vector<int32_t>* parent, int32_t c) {
+  std::vector<int32_t>& p = *parent;
+  while (p[c] != c) {
+    p[c] = p[p[c]];  // path halving
+    c = p[c];
+  }
+  return c;
+}
+
+void Union(std::vector<int32_t>* parent, int32_t a, int32_t b) {
+  a = Find(parent, a);
+  b = Find(parent, b);
+  if (a == b) return;
+  if (a < b) std::swap(a, b);
+  (*parent)[a] = b;  // the earlier cell is the root
+}
+
+// Reach of a cell in cells: cell_reach, or reach_spacings expected sample spacings at the
+// cell's range on its plane, at most max_reach.
+int Reach(const CellMoments& c, const PlaneGrid& g, const EmPlane& plane, const Options& options,
+          float angular_step) {
+  const int base = std::max(1, options.cell_reach);
+  if (angular_step <= 0.0f || options.reach_spacings <= 0.0f || c.all.n == 0) return base;
+  const float inv = 1.0f / static_cast<float>(c.all.n);
+  const Eigen::Vector3f centre = c.all.ref + Eigen::Vector3f(c.all.sx, c.all.sy, c.all.sz) * inv;
+  const float spacing = SampleSpacing(angular_step, centre.norm(), plane.d);
+  const float reach = std::min(options.max_reach, options.reach_spacings * spacing);
+  return std::max(base, static_cast<int>(std::ceil(reach / g.cell)));
+}
+
+}  // namespace
+
+void PlaneAxes(const Eigen::Vector3f& n, bool vertical, Eigen::Vector3f* u, Eigen::Vector3f* v) {
+  if (vertical) {
+    *u = Eigen::Vector3f::UnitZ().cross(n);
+  } else {
+    *u = (std::fabs(n.x()) < 0.9f ? Eigen::Vector3f::UnitX() : Eigen::Vector3f::UnitY()).cross(n);
+  }
+  u->normalize();
+  *v = n.cross(*u);
+}
+
+void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
+               const std::vector<uint8_t>& ambiguous, const std::vector<EmPlane>& planes,
+               const Options& options, PieceWorkspace::Buffers* w) {
+  const size_t n = cloud.size();
+  const float* x = cloud.x.data();
+  const float* y = cloud.y.data();
+  const float* z = cloud.z.data();
+  w->grids.assign(planes.size(), PlaneGrid{});
+  for (size_t j = 0; j < planes.size(); ++j) {
+    PlaneGrid& g = w->grids[j];
+    g.origin = planes[j].centroid;
+    g.n = planes[j].normal;
+    PlaneAxes(planes[j].normal, std::fabs(planes[j].normal.z()) < options.vertical_max_nz, &g.u,
+              &g.v);
+  }
+  // One pass in cloud order: each point's coordinates in its plane's grid, and the bounds.
+  w->a.resize(n);
+  w->b.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t l = labels[i];
+    if (l < 0) continue;
+    PlaneGrid& g = w->grids[l];
+    const float qx = x[i] - g.origin.x(), qy = y[i] - g.origin.y(), qz = z[i] - g.origin.z();
+    const float a = g.u.x() * qx + g.u.y() * qy + g.u.z() * qz;
+    const float b = g.v.x() * qx + g.v.y() * qy + g.v.z() * qz;
+    w->a[i] = a;
+    w->b[i] = b;
+    ++g.points;
+    g.a_lo = std::min(g.a_lo, a);
+    g.a_hi = std::max(g.a_hi, a);
+    g.b_lo = std::min(g.b_lo, b);
+    g.b_hi = std::max(g.b_hi, b);
+  }
+  size_t slots = 0;
+  for (PlaneGrid& g : w->grids) {
+    g.used = g.points >= options.min_points;
+    if (!g.used) continue;
+    g.cell = options.cell_size;
+    for (;;) {  // coarsen until the grid fits: a bounded cost whatever the plane's extent
+      const int64_t gw = static_cast<int64_t>((g.a_hi - g.a_lo) / g.cell) + 1;
+      const int64_t gh = static_cast<int64_t>((g.b_hi - g.b_lo) / g.cell) + 1;
+      if (gw * gh <= options.max_cells) {
+        g.w = static_cast<int>(gw);
+        g.h = static_cast<int>(gh);
+        break;
+      }
+      g.cell *= 2.0f;
+    }
+    g.base = slots;
+    slots += static_cast<size_t>(g.w) * g.h;
+  }
+  w->slot_of.assign(slots, -1);
+  w->cells.clear();
+  w->moments.clear();
+  w->cell_of_point.assign(n, -1);
+  // Second pass in cloud order: the cells and their moments.
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t l = labels[i];
+    if (l < 0) continue;
+    const PlaneGrid& g = w->grids[l];
+    if (!g.used) continue;
+    const int ix = std::min(g.w - 1, static_cast<int>((w->a[i] - g.a_lo) / g.cell));
+    const int iy = std::min(g.h - 1, static_cast<int>((w->b[i] - g.b_lo) / g.cell));
+    int32_t& slot = w->slot_of[g.base + static_cast<size_t>(iy) * g.w + ix];
+    if (slot < 0) {
+      slot = static_cast<int32_t>(w->cells.size());
+      w->cells.push_back(Cell{l, ix, iy});
+      w->moments.emplace_back();
+    }
+    w->cell_of_point[i] = slot;
+    CellMoments& c = w->moments[slot];
+    const Eigen::Vector3f p(x[i], y[i], z[i]);
+    const float e = g.n.dot(p - g.origin);
+    c.solid += ambiguous.empty() || !ambiguous[i];
+    c.e_lo = std::min(c.e_lo, e);
+    c.e_hi = std::max(c.e_hi, e);
+    c.all.Add(p);
+  }
+}
+
+int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, float angular_step,
+                PieceWorkspace::Buffers* w) {
+  const std::vector<Cell>& cells = w->cells;
+  const int32_t num_cells = static_cast<int32_t>(cells.size());
+  w->parent.resize(num_cells);
+  for (int32_t c = 0; c < num_cells; ++c) w->parent[c] = c;
+  for (int32_t c = 0; c < num_cells; ++c) {
+    const Cell& cell = cells[c];
+    if (w->moments[c].solid == 0) continue;
+    const PlaneGrid& g = w->grids[cell.plane];
+    const int reach = Reach(w->moments[c], g, planes[cell.plane], options, angular_step);
+    const int y0 = std::max(0, cell.iy - reach), y1 = std::min(g.h - 1, cell.iy + reach);
+    const int x0 = std::max(0, cell.ix - reach), x1 = std::min(g.w - 1, cell.ix + reach);
+    for (int yy = y0; yy <= y1; ++yy) {
+      const int32_t* row = &w->slot_of[g.base + static_cast<size_t>(yy) * g.w];
+      for (int xx = x0; xx <= x1; ++xx) {
+        const int32_t other = row[xx];
+        if (other < 0 || other == c || w->moments[other].solid == 0) continue;
+        Union(&w->parent, c, other);
+      }
+    }
+  }
+  w->piece_of.assign(num_cells, -1);
+  w->root_piece.assign(num_cells, -1);
+  int pieces = 0;
+  for (int32_t c = 0; c < num_cells; ++c) {
+    if (w->moments[c].solid == 0) continue;
+    int32_t& piece = w->root_piece[Find(&w->parent, c)];
+    if (piece < 0) piece = pieces++;
+    w->piece_of[c] = piece;
+  }
+  return pieces;
+}
+
+bool Interior(const PieceWorkspace::Buffers& w, size_t cell) {
+  const Cell& c = w.cells[cell];
+  const PlaneGrid& g = w.grids[c.plane];
+  if (c.ix == 0 || c.iy == 0 || c.ix == g.w - 1 || c.iy == g.h - 1) return false;
+  const int32_t piece = w.piece_of[cell];
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int32_t other = w.slot_of[g.base + static_cast<size_t>(c.iy + dy) * g.w + c.ix + dx];
+      if (other < 0 || w.piece_of[other] != piece) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace relplane::segmenter

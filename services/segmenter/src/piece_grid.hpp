@@ -1,0 +1,92 @@
+#pragma once
+// Occupancy grids in the planes' own coordinates and their connected pieces (the first half of
+// DescribePieces). Private to the library.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "relplane/segmenter/cloud.hpp"
+#include "relplane/segmenter/em.hpp"
+#include "relplane/segmenter/extent.hpp"
+#include "relplane/segmenter/moments.hpp"
+#include "relplane/segmenter/options.hpp"
+
+namespace relplane::segmenter {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Per occupied cell, what binning every point touches, in one cache line: the points'
+// moments, how many are solid (not on the strip where two planes meet), and the range of their
+// distances to the EM plane. Random access per point stays within a small array.
+struct alignas(64) CellMoments {
+  LocalMoments all;
+  int solid = 0;
+  float e_lo = kInf, e_hi = -kInf;
+};
+
+// Per occupied cell: where it is.
+struct Cell {
+  int32_t plane = 0;
+  int ix = 0, iy = 0;
+};
+
+// Per occupied cell, second pass: the moments of the points near the piece's first fit (for a
+// cell with points beyond the trim) and the extreme points along the piece's own axes (for a
+// cell on the piece's boundary).
+struct CellFinish {
+  LocalMoments trimmed;
+  Eigen::Vector2f lo_a{kInf, 0}, hi_a{-kInf, 0}, lo_b{0, kInf}, hi_b{0, -kInf};
+};
+
+// One EM plane's grid: origin at its centroid, axes u (horizontal for a vertical plane), v.
+struct PlaneGrid {
+  bool used = false;  // enough points to make a piece
+  int points = 0;
+  Eigen::Vector3f origin = Eigen::Vector3f::Zero(), n = Eigen::Vector3f::UnitZ(),
+                  u = Eigen::Vector3f::UnitX(),
+                  v = Eigen::Vector3f::UnitY();
+  float a_lo = kInf, a_hi = -kInf, b_lo = kInf, b_hi = -kInf;
+  float cell = 0.1f;
+  int w = 0, h = 0;
+  size_t base = 0;  // offset of its slots in Buffers::slot_of
+};
+
+struct PieceWorkspace::Buffers {
+  std::vector<float> a, b;              // per point: coordinates in its plane's grid
+  std::vector<int32_t> cell_of_point;   // per point: its cell, -1 for none
+  std::vector<int32_t> slot_of;         // per grid slot (all grids): its cell, -1 if empty
+  std::vector<Cell> cells;              // in order of first appearance
+  std::vector<CellMoments> moments;     // per cell
+  std::vector<CellFinish> finish;       // per cell
+  std::vector<uint8_t> mode;            // per cell: what the second pass does with its points
+  std::vector<PlaneGrid> grids;         // per EM plane
+  std::vector<int32_t> piece_of;        // per cell: its piece, -1 for none
+  std::vector<int32_t> parent, root_piece;  // union-find over cells
+};
+
+// In-plane axes: for a vertical plane u is horizontal and v points up, so the extent rectangle
+// follows the wall's vertical edges; otherwise any orthonormal pair.
+void PlaneAxes(const Eigen::Vector3f& n, bool vertical, Eigen::Vector3f* u, Eigen::Vector3f* v);
+
+// Bins the points of every plane with at least options.min_points labelled points into that
+// plane's grid (coarsened until it has at most options.max_cells cells): fills grids, cells
+// (count, solid count, moments) and cell_of_point.
+void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
+               const std::vector<uint8_t>& ambiguous, const std::vector<EmPlane>& planes,
+               const Options& options, PieceWorkspace::Buffers* w);
+
+// Connected components of the solid cells of each grid: two cells connect when either lies
+// within the other's reach (cell_reach, or more where samples are further apart, see
+// DescribePieces). Cells holding only points on the strip where two planes meet belong to no
+// piece: along a floor, that strip would otherwise bridge the door between two walls. Fills
+// piece_of, numbering pieces in order of their cells' first appearance; returns their count.
+int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, float angular_step,
+                PieceWorkspace::Buffers* w);
+
+// A cell whose eight neighbours belong to its piece lies inside the piece: its points cannot
+// shape the hull (to within a cell).
+bool Interior(const PieceWorkspace::Buffers& w, size_t cell);
+
+}  // namespace relplane::segmenter
