@@ -134,12 +134,13 @@ TEST(ReadLaunchOptionsTest, RestartPolicy) {
   EXPECT_TRUE(listed.restart.Covers("mapper"));
   EXPECT_FALSE(listed.restart.Covers("segmenter"));
 
-  // Without a list: every service but the simulator.
+  // Without a list: every service but the simulator and the logger.
   const LaunchOptions all = ReadLaunchOptions(
       "launch:\n  services: [sim, segmenter, mapper, logger]\n  restart:\n    max_restarts: 1\n",
       "s.yaml");
-  EXPECT_EQ(all.restart.services, (std::vector<std::string>{"segmenter", "mapper", "logger"}));
+  EXPECT_EQ(all.restart.services, (std::vector<std::string>{"segmenter", "mapper"}));
   EXPECT_FALSE(all.restart.Covers("sim"));
+  EXPECT_FALSE(all.restart.Covers("logger"));
 }
 
 TEST(ReadLaunchOptionsTest, RestartPolicyTyposAreOneLine) {
@@ -163,6 +164,8 @@ TEST(ReadLaunchOptionsTest, RestartPolicyTyposAreOneLine) {
   EXPECT_EQ(error("  restart: {max_restarts: 2, services: [sim]}\n"),
             "s.yaml:3: key 'launch.restart.services': 'sim' cannot be restarted: its end ends "
             "the run");
+  EXPECT_EQ(error("  restart: {max_restarts: 2, services: [logger]}\n").substr(0, 63),
+            "s.yaml:3: key 'launch.restart.services': 'logger' cannot be res");
   EXPECT_EQ(error("  restrat: {max_restarts: 2}\n"),
             "s.yaml:3: unknown key 'launch.restrat' (did you mean 'restart'?)");
   EXPECT_NE(error("  restart: 3\n"), "");

@@ -31,7 +31,7 @@ RestartPolicy ReadRestartPolicy(config::Reader reader, const std::vector<std::st
   if (policy.max_restarts < 0) reader.Fail("max_restarts", "must be >= 0");
   if (!reader.Has("services")) {
     for (const std::string& service : services) {
-      if (service != "sim") policy.services.push_back(service);
+      if (service != "sim" && service != "logger") policy.services.push_back(service);
     }
     return policy;
   }
@@ -39,6 +39,13 @@ RestartPolicy ReadRestartPolicy(config::Reader reader, const std::vector<std::st
   for (const std::string& service : policy.services) {
     if (service == "sim") {
       reader.Fail("services", "'sim' cannot be restarted: its end ends the run");
+    }
+    if (service == "logger") {
+      // A new logger starts with nothing and would replace the run's files with what it sees
+      // from then on; bus.lcmlog has everything, for relplane-eval.
+      reader.Fail("services",
+                  "'logger' cannot be restarted: a new one would overwrite the run's files with "
+                  "less; score the run with relplane-eval RUN/bus.lcmlog");
     }
     if (std::find(services.begin(), services.end(), service) == services.end()) {
       const std::string closest = ClosestKey(service, services);

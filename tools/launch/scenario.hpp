@@ -13,7 +13,7 @@ namespace relplane::launch {
 // signal the launcher did not send), and how often at most per service.
 struct RestartPolicy {
   int max_restarts = 0;               // per service; 0: a crash fails the run (the default)
-  std::vector<std::string> services;  // default: every service of the run but the source
+  std::vector<std::string> services;  // default: every service of the run but sim and logger
   bool Covers(const std::string& service) const;
 };
 
