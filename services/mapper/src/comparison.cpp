@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 
 #include "relplane/common/geometry.hpp"
 
@@ -29,8 +30,11 @@ void AddSample(const Observation& oa, const Observation& ob, SubInterval* s) {
   const Vector2d nb_in_a = rat * ob.normal, na_in_b = rbt * oa.normal;
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) {
+      // An edge cut by the view now is no wall end now: the pairing skips this sample.
+      if (oa.cut[i] || ob.cut[j]) continue;
       const Vector2d ab = rat * (ob.edge[j] - oa.edge[i]);  // B's edge j from A's edge i
       const Vector2d ba = rbt * (oa.edge[i] - ob.edge[j]);  // A's edge i from B's edge j
+      s->npair[i][j] += 1.0;
       double* p = s->pair[0][i][j];
       p[0] += ab.x(), p[1] += ab.y(), p[2] += ab.x() * ab.x(), p[3] += ab.y() * ab.y();
       double* q = s->pair[1][j][i];
@@ -48,6 +52,20 @@ void AddSample(const Observation& oa, const Observation& ob, SubInterval* s) {
     e[0] += pts[k].x(), e[1] += pts[k].y();
     e[2] += pts[k].x() * pts[k].x(), e[3] += pts[k].y() * pts[k].y();
   }
+}
+
+constexpr double kUncutShare = 0.8;  // of a sub-interval's samples, for an edge to be judged
+
+// Which edges of the observation at index k are cut by the view, by the majority of the three
+// around it: a single flicker of the flag under noise does not count.
+int CutKey(const std::deque<Observation>& obs, size_t k, size_t size) {
+  int key = 0;
+  for (int e = 0; e < 2; ++e) {
+    int votes = 0, total = 0;
+    for (size_t q = k > 0 ? k - 1 : 0; q <= k + 1 && q < size; ++q) votes += obs[q].cut[e], ++total;
+    if (2 * votes > total) key |= 1 << e;
+  }
+  return key;
 }
 
 double Std2(const double* sums, double n) {
@@ -97,9 +115,12 @@ Verdict Judge(const SubInterval& s, const ComparisonOptions& options) {
   int low = 0;
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) {
-      std_ij[i][j] = Std2(s.pair[0][i][j], n);
-      // An edge cut by the view at any time in the interval is no wall end.
-      if (s.cut[i] > 0 || s.cut[2 + j] > 0) std_ij[i][j] = 1e9;
+      // Judged over the samples where neither edge was cut by the view; an edge cut in more
+      // than a few of them is no wall end (a cut flag flickers under noise near the border,
+      // so one cut sample does not condemn it, nor split the interval).
+      const double m = s.npair[i][j];
+      std_ij[i][j] = m >= options.min_samples && m >= kUncutShare * n ? Std2(s.pair[0][i][j], m)
+                                                                       : 1e9;
       if (std_ij[i][j] < std_ij[best_i][best_j]) best_i = i, best_j = j;
       if (std_ij[i][j] <= options.static_std) ++low;
     }
@@ -122,12 +143,13 @@ Verdict Judge(const SubInterval& s, const ComparisonOptions& options) {
     for (int j = 0; j < 2; ++j) {
       if (std_ij[i][j] > threshold) continue;
       v.static_a[i] = v.static_b[j] = true;
+      const double m = s.npair[i][j];
       v.stats[0].pair_sum[i][j] += Vector2d(s.pair[0][i][j][0], s.pair[0][i][j][1]);
-      v.stats[0].pair_count[i][j] += n;
+      v.stats[0].pair_count[i][j] += m;
       v.stats[0].pair_sq[i][j] += s.pair[0][i][j][2] + s.pair[0][i][j][3];
       v.stats[1].pair_sq[j][i] += s.pair[1][j][i][2] + s.pair[1][j][i][3];
       v.stats[1].pair_sum[j][i] += Vector2d(s.pair[1][j][i][0], s.pair[1][j][i][1]);
-      v.stats[1].pair_count[j][i] += n;
+      v.stats[1].pair_count[j][i] += m;
     }
   }
   return v;
@@ -216,10 +238,10 @@ void Comparison::Rebuild(RltPlane& a, RltPlane& b, int64_t now, const Comparison
       continue;
     }
     const int64_t pa = a.PhaseAt(ka), pb = b.PhaseAt(ka);
-    // Also split where an edge starts or stops being cut by the view: its static state changes.
-    const Observation& oa = obs_a[ia];
-    const Observation& ob = obs_b[ib];
-    const int cut_key = oa.cut[0] | oa.cut[1] << 1 | ob.cut[0] << 2 | ob.cut[1] << 3;
+    // Also split where an edge stays cut by the view or stops being cut for a while: its
+    // static state changes. A single flicker does not split (see Judge).
+    const int cut_key = CutKey(obs_a, ia, a.Observations().size()) |
+                        CutKey(obs_b, ib, b.Observations().size()) << 2;
     const bool extend = !open_.empty() && open_.back().phase_a == pa &&
                         open_.back().phase_b == pb && open_.back().cut_key == cut_key &&
                         ka - open_.back().last <= max_gap &&

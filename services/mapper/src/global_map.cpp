@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "relplane/mapper/pose_graph.hpp"
 #include "relplane/mapper/relative_map.hpp"
 
 namespace relplane::mapper {
@@ -130,6 +131,38 @@ void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& 
   *hi_out = hi;
 }
 
+// Places the members of group `g` not yet on the global map (hard rule: the first group to
+// place a plane wins, unless a later one knows more), from the group's placement.
+void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
+  Group& group = state.groups[g];
+  for (const auto& [id, rel] : group.relative.members) {
+    auto it = state.global.find(id);
+    // Hard chaining: the first group to place a plane wins, unless a later one knows more.
+    // A later group that found the plane's other edge static adds that end to the map.
+    if (it != state.global.end() && it->second.known >= rel.known) {
+      Placement& placed = it->second;
+      if (placed.known == Known::kPoint && rel.known == Known::kPoint && rel.ref != placed.ref &&
+          !placed.has_other) {
+        const Vector2d t = DirectionOf(placed.alpha);
+        const Vector2d w = group.placement * rel.point;
+        placed.other = placed.point + t * t.dot(w - placed.point);
+        placed.has_other = true;
+        placed.other_by = static_cast<int64_t>(g);
+      }
+      continue;
+    }
+    Placement world = Apply(group.placement, rel);
+    if (rel.known == Known::kAngle) {
+      // No comparison pins it yet: its line as seen when the group was made, from the pose
+      // then (§II.A end: "transformed using current position").
+      const Observation& obs = ObservedWithPose(*state.Plane(id), state, group.created, g == 0);
+      world = PlacementOf(obs, PoseAt(state, obs.iteration, options), -1);
+    }
+    state.global[id] = world;
+    state.placed_by[id] = static_cast<int64_t>(g);
+  }
+}
+
 void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options) {
   // Forget what the re-placed groups placed.
   for (auto it = state.placed_by.begin(); it != state.placed_by.end();) {
@@ -190,31 +223,18 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
       }
     }
     group.placement = Solve(links, prior, options.localisation.prior_weight);
-    for (const auto& [id, rel] : group.relative.members) {
-      auto it = state.global.find(id);
-      // Hard chaining: the first group to place a plane wins, unless a later one knows more.
-      // A later group that found the plane's other edge static adds that end to the map.
-      if (it != state.global.end() && it->second.known >= rel.known) {
-        Placement& placed = it->second;
-        if (placed.known == Known::kPoint && rel.known == Known::kPoint && rel.ref != placed.ref &&
-            !placed.has_other) {
-          const Vector2d t = DirectionOf(placed.alpha);
-          const Vector2d w = group.placement * rel.point;
-          placed.other = placed.point + t * t.dot(w - placed.point);
-          placed.has_other = true;
-          placed.other_by = static_cast<int64_t>(g);
-        }
-        continue;
-      }
-      Placement world = Apply(group.placement, rel);
-      if (rel.known == Known::kAngle) {
-        // No comparison pins it yet: its line as seen when the group was made, from the pose
-        // then (§II.A end: "transformed using current position").
-        const Observation& obs = ObservedWithPose(*state.Plane(id), state, group.created, g == 0);
-        world = PlacementOf(obs, PoseAt(state, obs.iteration, options), -1);
-      }
-      state.global[id] = world;
-      state.placed_by[id] = static_cast<int64_t>(g);
+    PlaceMembers(state, g, options);
+  }
+  // Soft-linked groups: when a loop closes (or a closing tie learns more), the group placements
+  // are solved together over the graph of ties and every group re-places its members.
+  const int evidence = LoopEvidence(state, options.grouping.recent_groups);
+  if (options.graph.enabled && evidence > state.loop_evidence) {
+    state.loop_evidence = evidence;
+    const PoseGraphResult solved = OptimiseGroupPlacements(state, options.graph);
+    if (solved.cost_after < solved.cost_before) {
+      state.global.clear();
+      state.placed_by.clear();
+      for (size_t g = 0; g < state.groups.size(); ++g) PlaceMembers(state, g, options);
     }
   }
   state.map_changed = true;

@@ -6,6 +6,8 @@ namespace relplane::mapper {
 namespace {
 
 constexpr double kFullLengthTolerance = 0.1;  // m, several times the edge noise
+constexpr size_t kSmoothing = 5;              // lengths averaged for the growth phase
+constexpr double kNoiseHysteresis = 3.0;      // length noise sigmas
 
 }  // namespace
 
@@ -24,15 +26,32 @@ RltPlane::RltPlane(int64_t id, Observation first, double phase_hysteresis, int m
 
 void RltPlane::Add(Observation obs) {
   if (!observations_.empty() && obs.iteration <= observations_.back().iteration) return;
-  const double length = obs.Length();
+  const double raw_length = obs.Length();
   const int64_t it = obs.iteration;
-  // §II.C growth tracking with hysteresis; the new phase starts just after the extreme so the
-  // split is where the trend really turned, not where it was noticed.
+  // The visible length's noise, from its second differences (zero for steady growth): the
+  // mean absolute second difference of white noise is 1.95 sigma.
+  recent_lengths_.push_back(raw_length);
+  if (recent_lengths_.size() > kSmoothing) recent_lengths_.erase(recent_lengths_.begin());
+  const size_t n = recent_lengths_.size();
+  if (n >= 3) {
+    const double second =
+        std::abs(recent_lengths_[n - 1] - 2.0 * recent_lengths_[n - 2] + recent_lengths_[n - 3]);
+    length_noise_ += (second / 1.95 - length_noise_) / std::min<double>(count_, 50.0);
+  }
+  // §II.C growth tracking with hysteresis on the mean of the last few lengths, the hysteresis
+  // at least a few times the length noise, so noise alone never turns a steady plane from
+  // growing to shrinking (each turn splits the comparison intervals). The new phase starts
+  // just after the extreme so the split is where the trend really turned, not where it was
+  // noticed.
+  double length = 0.0;
+  for (double l : recent_lengths_) length += l;
+  length /= static_cast<double>(n);
+  const double hysteresis = std::max(hysteresis_, kNoiseHysteresis * length_noise_);
   if (growing_) {
     if (length >= extreme_length_) {
       extreme_length_ = length;
       extreme_iteration_ = it;
-    } else if (length < extreme_length_ - hysteresis_) {
+    } else if (length < extreme_length_ - hysteresis) {
       phase_starts_.push_back(extreme_iteration_ + 1);
       growing_ = false;
       extreme_length_ = length;
@@ -42,15 +61,15 @@ void RltPlane::Add(Observation obs) {
     if (length <= extreme_length_) {
       extreme_length_ = length;
       extreme_iteration_ = it;
-    } else if (length > extreme_length_ + hysteresis_) {
+    } else if (length > extreme_length_ + hysteresis) {
       phase_starts_.push_back(extreme_iteration_ + 1);
       growing_ = true;
       extreme_length_ = length;
       extreme_iteration_ = it;
     }
   }
-  if (length > max_length_) {
-    max_length_ = length;
+  if (raw_length > max_length_) {
+    max_length_ = raw_length;
     full_dirty_ = !full_ranges_.empty();
   }
   z_min_ = std::min(z_min_, obs.z_min);

@@ -49,6 +49,7 @@ struct SubInterval {
   double cos_sum = 0.0;
   // [0]: B seen from A, [1]: A seen from B. Per pairing: x, y, x^2, y^2 sums.
   double pair[2][2][2][4] = {};
+  double npair[2][2] = {};  // samples of pairing [i][j] where neither edge was cut
   double line[2][2][2] = {};  // [dir][edge][sum, sum^2]
   // Sensor-frame positions of A's and B's edges (x, y, x^2, y^2): did the sensor move at all?
   double edges[4][4] = {};

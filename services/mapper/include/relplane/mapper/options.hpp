@@ -54,6 +54,15 @@ struct LocalisationOptions {
   double prior_weight = 1e-4;    // weight of the previous position in the least squares
 };
 
+// Soft-linked groups (§V future work): least squares over the group placements at loop closure.
+struct PoseGraphOptions {
+  bool enabled = true;
+  double angle_sigma = 0.005;    // rad, agreement of a shared plane's orientation in two groups
+  double position_sigma = 0.01;  // m, agreement of its line and static edge
+  double prior_sigma = 100.0;    // m (and rad): each group's own placement, a gauge only
+  int max_iterations = 10;
+};
+
 struct StartPose {
   double x = 0.0;
   double y = 0.0;
@@ -67,6 +76,7 @@ struct MapperOptions {
   GroupingOptions grouping;
   ComparisonOptions comparison;
   LocalisationOptions localisation;
+  PoseGraphOptions graph;
   StartPose start_pose;
   int max_observations = 3000;  // per rltplane; older observations are dropped (bounded memory)
 };

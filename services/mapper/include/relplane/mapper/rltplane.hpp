@@ -67,6 +67,8 @@ class RltPlane {
   // Growth tracking: phase starts (iteration, first of the phase), current trend and extreme.
   std::vector<int64_t> phase_starts_;
   bool growing_ = true;
+  std::vector<double> recent_lengths_;  // the last few visible lengths
+  double length_noise_ = 0.0;           // estimated standard deviation of the visible length
   double extreme_length_ = 0.0;
   int64_t extreme_iteration_ = 0;
 };

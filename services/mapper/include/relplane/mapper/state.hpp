@@ -67,6 +67,7 @@ struct MapperState {
   int64_t next_id = 0;
   int64_t first_iteration = -1;
   bool map_changed = false;
+  int loop_evidence = 0;  // loop-closing ties seen so far (pose_graph.hpp)
 
   RltPlane* Plane(int64_t id) {
     auto it = planes.find(id);

@@ -1,0 +1,181 @@
+#include "relplane/mapper/pose_graph.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <cmath>
+#include <vector>
+
+#include "relplane/mapper/relative_map.hpp"
+
+namespace relplane::mapper {
+namespace {
+
+using Eigen::Vector2d;
+
+constexpr double kRobust = 3.0;  // sigmas
+
+// One plane's placement in two groups' relative maps.
+struct Tie {
+  int i = 0;
+  int j = 0;
+  const Placement* a = nullptr;
+  const Placement* b = nullptr;
+  const RltPlane* plane = nullptr;
+};
+
+// Ties between consecutive groups (by index) holding the same rltplane with a known placement.
+std::vector<Tie> CollectTies(const MapperState& state) {
+  std::vector<Tie> ties;
+  for (const auto& [id, plane] : state.planes) {
+    int previous = -1;
+    for (int64_t g : plane.groups) {
+      if (g < 0 || g >= static_cast<int64_t>(state.groups.size())) continue;
+      const auto& members = state.groups[g].relative.members;
+      if (!members.count(id)) continue;
+      if (previous >= 0 && previous != g) {
+        ties.push_back({previous, static_cast<int>(g),
+                        &state.groups[previous].relative.members.at(id), &members.at(id), &plane});
+      }
+      previous = static_cast<int>(g);
+    }
+  }
+  return ties;
+}
+
+// d/dyaw of R(yaw) p.
+Vector2d RotDerivative(double yaw, const Vector2d& p) {
+  return Eigen::Rotation2Dd(yaw) * Vector2d(-p.y(), p.x());
+}
+
+struct Normal {
+  std::vector<Eigen::Triplet<double>> h;
+  Eigen::VectorXd g;
+  double cost = 0.0;
+  // Adds one residual r (weight w) with Jacobian entries over the two nodes' (x, y, yaw).
+  // The Cauchy kernel (scale kRobust sigmas) weighs the residual down when it is an outlier: a
+  // tie through a plane misplaced in one group's relative map must not bend the whole loop.
+  void Add(double r, double w, int i, const Eigen::Vector3d& ji, int j, const Eigen::Vector3d& jj) {
+    const double s = w * r * r / (kRobust * kRobust);
+    cost += kRobust * kRobust * std::log1p(s);
+    w /= 1.0 + s;
+    const int idx[2] = {3 * i, 3 * j};
+    const Eigen::Vector3d* jac[2] = {&ji, &jj};
+    for (int u = 0; u < 2; ++u) {
+      g.segment<3>(idx[u]) += w * r * *jac[u];
+      for (int v = 0; v < 2; ++v) {
+        for (int p = 0; p < 3; ++p) {
+          for (int q = 0; q < 3; ++q) {
+            const double value = w * (*jac[u])(p) * (*jac[v])(q);
+            if (value != 0.0) h.emplace_back(idx[u] + p, idx[v] + q, value);
+          }
+        }
+      }
+    }
+  }
+};
+
+// The normalised cost and its normal equations at the current placements.
+Normal Linearise(const std::vector<Tie>& ties, const std::vector<geometry::Pose2>& x,
+                 const std::vector<geometry::Pose2>& x0, const PoseGraphOptions& options) {
+  const int n = static_cast<int>(x.size());
+  Normal eq;
+  eq.g = Eigen::VectorXd::Zero(3 * n);
+  const double wa = 1.0 / (options.angle_sigma * options.angle_sigma);
+  const double wp = 1.0 / (options.position_sigma * options.position_sigma);
+  for (const Tie& t : ties) {
+    const geometry::Pose2& pi = x[t.i];
+    const geometry::Pose2& pj = x[t.j];
+    const double alpha = pi.yaw + t.a->alpha;
+    eq.Add(geometry::WrapAngle(alpha - (pj.yaw + t.b->alpha)), wa, t.i, {0, 0, 1}, t.j,
+           {0, 0, -1});
+    if (t.a->known == Known::kAngle || t.b->known == Known::kAngle) continue;
+    // The line: the two placements' points lie on one world line.
+    const Vector2d nrm = NormalOf(alpha), dir = DirectionOf(alpha);
+    const Vector2d diff = pi * t.a->point - pj * t.b->point;
+    eq.Add(nrm.dot(diff), wp, t.i, {nrm.x(), nrm.y(), nrm.dot(RotDerivative(pi.yaw, t.a->point))},
+           t.j, {-nrm.x(), -nrm.y(), -nrm.dot(RotDerivative(pj.yaw, t.b->point))});
+    // The static edge: the same wall end in both.
+    if (t.a->known != Known::kPoint || t.b->known != Known::kPoint) continue;
+    Vector2d qb;
+    if (!EdgePoint(*t.plane, *t.b, t.a->ref, &qb)) continue;
+    const Vector2d qa = t.a->point;
+    eq.Add(dir.dot(pi * qa - pj * qb), wp, t.i,
+           {dir.x(), dir.y(), dir.dot(RotDerivative(pi.yaw, qa))}, t.j,
+           {-dir.x(), -dir.y(), -dir.dot(RotDerivative(pj.yaw, qb))});
+  }
+  // Each group's own placement as a weak prior (the gauge where ties leave a direction open);
+  // group 0 is anchored.
+  const double wprior = 1.0 / (options.prior_sigma * options.prior_sigma);
+  for (int k = 0; k < n; ++k) {
+    const double w = k == 0 ? 1e12 : wprior;
+    const double r[3] = {x[k].x - x0[k].x, x[k].y - x0[k].y,
+                         geometry::WrapAngle(x[k].yaw - x0[k].yaw)};
+    for (int p = 0; p < 3; ++p) {
+      Eigen::Vector3d jac = Eigen::Vector3d::Zero();
+      jac(p) = 1.0;
+      eq.cost += w * r[p] * r[p];
+      eq.g(3 * k + p) += w * r[p];
+      eq.h.emplace_back(3 * k + p, 3 * k + p, w);
+    }
+  }
+  return eq;
+}
+
+}  // namespace
+
+int LoopEvidence(const MapperState& state, int min_span) {
+  int evidence = 0;
+  for (const auto& [id, plane] : state.planes) {
+    int previous = -1;
+    for (int64_t g : plane.groups) {
+      if (g < 0 || g >= static_cast<int64_t>(state.groups.size())) continue;
+      const auto& members = state.groups[g].relative.members;
+      auto it = members.find(id);
+      if (it == members.end()) continue;
+      if (previous >= 0 && g - previous > min_span) {
+        auto old = state.groups[previous].relative.members.find(id);
+        evidence += 1 + std::min(static_cast<int>(it->second.known),
+                                 static_cast<int>(old->second.known));
+      }
+      previous = static_cast<int>(g);
+    }
+  }
+  return evidence;
+}
+
+PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptions& options) {
+  PoseGraphResult result;
+  const int n = static_cast<int>(state.groups.size());
+  if (n < 2) return result;
+  const std::vector<Tie> ties = CollectTies(state);
+  result.ties = static_cast<int>(ties.size());
+  std::vector<geometry::Pose2> x0(n);
+  for (int k = 0; k < n; ++k) x0[k] = state.groups[k].placement;
+  std::vector<geometry::Pose2> x = x0;
+  Eigen::SparseMatrix<double> h(3 * n, 3 * n);
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+  for (int iter = 0; iter < options.max_iterations; ++iter) {
+    Normal eq = Linearise(ties, x, x0, options);
+    if (iter == 0) result.cost_before = eq.cost;
+    h.setFromTriplets(eq.h.begin(), eq.h.end());
+    solver.compute(h);  // the pattern may change between iterations (exact zeros are left out)
+    if (solver.info() != Eigen::Success) break;
+    const Eigen::VectorXd step = solver.solve(-eq.g);
+    if (!step.allFinite()) break;
+    for (int k = 1; k < n; ++k) {
+      x[k].x += step(3 * k);
+      x[k].y += step(3 * k + 1);
+      x[k].yaw = geometry::WrapAngle(x[k].yaw + step(3 * k + 2));
+    }
+    result.iterations = iter + 1;
+    if (step.cwiseAbs().maxCoeff() < 1e-7) break;
+  }
+  result.cost_after = Linearise(ties, x, x0, options).cost;
+  // Keep the result only if it explains the ties better (a failed solve leaves the map alone).
+  if (result.cost_after < result.cost_before) {
+    for (int k = 0; k < n; ++k) state.groups[k].placement = x[k];
+  }
+  return result;
+}
+
+}  // namespace relplane::mapper
