@@ -33,6 +33,7 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   ReadPositive(r, "em_fraction", &o.em_fraction);
   ReadPositive(r, "em_iterations", &o.em_iterations);
   ReadPositive(r, "max_rounds", &o.max_rounds);
+  ReadNonNegative(r, "seed_sigma", &o.seed_sigma);
   ReadPositive(r, "max_planes", &o.max_planes);
   ReadPositive(r, "converged_angle", &o.converged_angle);
   ReadPositive(r, "converged_offset", &o.converged_offset);

@@ -1,8 +1,11 @@
 #include "relplane/segmenter/em.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace relplane::segmenter {
 namespace {
@@ -13,24 +16,96 @@ constexpr float kCutoffSigmas = 5.0f;
 // Weights below this are skipped in the M-step sums.
 constexpr float kMinWeight = 1e-4f;
 
-}  // namespace
+// Lanes of the hand-split reductions below: independent partial sums per lane let the
+// compiler vectorise a sum without reassociating it.
+constexpr int kLanes = 8;
+constexpr int kBlock = 256;  // points per block of the M-step's float sums
 
-std::vector<float> RangeVariance(const Cloud& points, float range_noise) {
-  std::vector<float> q(points.size(), 0.0f);
-  if (range_noise <= 0.0f) return q;
+int32_t Bits(float f) {
+  int32_t b;
+  std::memcpy(&b, &f, sizeof b);
+  return b;
+}
+float Float(int32_t b) {
+  float f;
+  std::memcpy(&f, &b, sizeof f);
+  return f;
+}
+
+// exp(-u / 2) for u in [0, kCutoffSigmas^2], branch-free so loops over it vectorise:
+// -u / 2 = n ln2 + r with |r| <= ln2 / 2, exp(r) by its degree-6 Taylor polynomial (relative
+// error below 2e-7, about float rounding), 2^n assembled in the exponent bits.
+float ExpHalfNegative(float u) {
+  const float x = -0.5f * u;
+  constexpr float kRound = 12582912.0f;  // 1.5 * 2^23: adding and removing it rounds to integer
+  const float n = (x * 1.44269504f + kRound) - kRound;
+  const float r = (x - n * 0.693145752f) - n * 1.42860677e-6f;  // Cody-Waite: ln2 in two parts
+  float p = 1.0f / 720.0f;
+  p = p * r + 1.0f / 120.0f;
+  p = p * r + 1.0f / 24.0f;
+  p = p * r + 1.0f / 6.0f;
+  p = p * r + 0.5f;
+  p = p * r + 1.0f;
+  p = p * r + 1.0f;
+  return p * Float((static_cast<int32_t>(n) + 127) << 23);
+}
+
+// peak * exp(-u / 2) within the cut-off (u < cutoff), 0 beyond. u >= 0, so its bits order as
+// integers do: integer min and masks keep the loop free of branches.
+float Density(float peak, float u, int32_t cutoff_bits) {
+  const int32_t ub = Bits(u);
+  const int32_t within = -static_cast<int32_t>(ub < cutoff_bits);
+  return Float(Bits(peak * ExpHalfNegative(Float(std::min(ub, cutoff_bits)))) & within);
+}
+
+// Sums over n points, n a multiple of kLanes, in kLanes partial sums.
+float Sum(const float* __restrict a, int n) {
+  float lane[kLanes] = {};
+  for (int i = 0; i < n; i += kLanes) {
+    for (int l = 0; l < kLanes; ++l) lane[l] += a[i + l];
+  }
+  float s = 0.0f;
+  for (float v : lane) s += v;
+  return s;
+}
+float Dot(const float* __restrict a, const float* __restrict b, int n) {
+  float lane[kLanes] = {};
+  for (int i = 0; i < n; i += kLanes) {
+    for (int l = 0; l < kLanes; ++l) lane[l] += a[i + l] * b[i + l];
+  }
+  float s = 0.0f;
+  for (float v : lane) s += v;
+  return s;
+}
+float Dot3(const float* __restrict a, const float* __restrict b, const float* __restrict c,
+           int n) {
+  float lane[kLanes] = {};
+  for (int i = 0; i < n; i += kLanes) {
+    for (int l = 0; l < kLanes; ++l) lane[l] += a[i + l] * b[i + l] * c[i + l];
+  }
+  float s = 0.0f;
+  for (float v : lane) s += v;
+  return s;
+}
+
+void RangeVariance(const Cloud& points, float range_noise, std::vector<float>* q) {
+  q->assign(points.size(), 0.0f);
+  if (range_noise <= 0.0f) return;
   const float k2 = range_noise * range_noise;
   for (size_t i = 0; i < points.size(); ++i) {
     const float r2 =
         points.x[i] * points.x[i] + points.y[i] * points.y[i] + points.z[i] * points.z[i];
-    q[i] = k2 * r2 * r2;
+    (*q)[i] = k2 * r2 * r2;
   }
-  return q;
 }
+
+}  // namespace
 
 void EStep(const Cloud& points, const std::vector<EmPlane>& planes, const Options& options,
            Responsibilities* resp) {
   const float outlier_density = options.outlier_density;
-  resp->range_variance = RangeVariance(points, options.range_noise);
+  RangeVariance(points, options.range_noise, &resp->range_variance);
+  const bool range_noise = options.range_noise > 0.0f;
   const float* q = resp->range_variance.data();
   const int n = static_cast<int>(points.size());
   const int k = static_cast<int>(planes.size());
@@ -39,28 +114,35 @@ void EStep(const Cloud& points, const std::vector<EmPlane>& planes, const Option
   resp->r.assign(static_cast<size_t>(k + 1) * n, 0.0f);
   float* total = &resp->r[static_cast<size_t>(k) * n];  // the outlier row doubles as the sum
   std::fill(total, total + n, outlier_density);
-  const float* x = points.x.data();
-  const float* y = points.y.data();
-  const float* z = points.z.data();
+  const float* __restrict x = points.x.data();
+  const float* __restrict y = points.y.data();
+  const float* __restrict z = points.z.data();
+  const int32_t cutoff_bits = Bits(kCutoffSigmas * kCutoffSigmas);
+  const float inv_sqrt_2pi = 1.0f / std::sqrt(2.0f * static_cast<float>(M_PI));
   for (int j = 0; j < k; ++j) {
     const EmPlane& p = planes[j];
     const float nx = p.normal.x(), ny = p.normal.y(), nz = p.normal.z(), d = p.d;
     const float var_j = p.sigma * p.sigma;
-    const float cutoff2 = kCutoffSigmas * kCutoffSigmas;
-    const float inv_sqrt_2pi = 1.0f / std::sqrt(2.0f * static_cast<float>(M_PI));
-    float* row = &resp->r[static_cast<size_t>(j) * n];
-    for (int i = 0; i < n; ++i) {
-      const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
-      const float var = var_j + q[i];
-      if (dist * dist < cutoff2 * var) {
-        row[i] = inv_sqrt_2pi / std::sqrt(var) * std::exp(-0.5f * dist * dist / var);
-        total[i] += row[i];
+    float* __restrict row = &resp->r[static_cast<size_t>(j) * n];
+    if (!range_noise) {
+      const float inv_var = 1.0f / var_j;
+      const float peak = inv_sqrt_2pi / std::sqrt(var_j);
+      for (int i = 0; i < n; ++i) {
+        const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
+        row[i] = Density(peak, dist * dist * inv_var, cutoff_bits);
+      }
+    } else {
+      for (int i = 0; i < n; ++i) {
+        const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
+        const float inv_var = 1.0f / (var_j + q[i]);
+        row[i] = Density(inv_sqrt_2pi * std::sqrt(inv_var), dist * dist * inv_var, cutoff_bits);
       }
     }
+    for (int i = 0; i < n; ++i) total[i] += row[i];
   }
   for (int i = 0; i < n; ++i) total[i] = 1.0f / total[i];
   for (int j = 0; j < k; ++j) {
-    float* row = &resp->r[static_cast<size_t>(j) * n];
+    float* __restrict row = &resp->r[static_cast<size_t>(j) * n];
     for (int i = 0; i < n; ++i) row[i] *= total[i];
   }
   for (int i = 0; i < n; ++i) total[i] *= outlier_density;
@@ -69,43 +151,56 @@ void EStep(const Cloud& points, const std::vector<EmPlane>& planes, const Option
 void MStep(const Cloud& points, const Responsibilities& resp, const Options& options,
            std::vector<EmPlane>* planes) {
   const int n = resp.num_points;
+  const float* __restrict x = points.x.data();
+  const float* __restrict y = points.y.data();
+  const float* __restrict z = points.z.data();
+  const float* __restrict q = resp.range_variance.data();
   for (int j = 0; j < resp.num_planes; ++j) {
     EmPlane& plane = (*planes)[j];
-    const float* r = &resp.r[static_cast<size_t>(j) * n];
+    const float* __restrict r = &resp.r[static_cast<size_t>(j) * n];
     // Heteroscedastic weights: a point's responsibility scaled by its precision relative to
-    // the plane's own noise, so noisy far points count less (equal weights without range noise).
+    // the plane's own noise, so noisy far points count less (equal weights without range
+    // noise). Weights below kMinWeight count as zero.
     const float var_j = plane.sigma * plane.sigma;
-    std::vector<float> weight(n);
-    for (int i = 0; i < n; ++i) weight[i] = r[i] * var_j / (var_j + resp.range_variance[i]);
-    const float* w = weight.data();
-    // One pass of moments about the previous centroid (close to the new one, so the sums stay
-    // well conditioned), in double.
-    const Eigen::Vector3f ref = plane.centroid;
-    double sw = 0.0, support = 0.0;
-    double s1[3] = {0, 0, 0}, s2[6] = {0, 0, 0, 0, 0, 0};
-    for (int i = 0; i < n; ++i) {
-      support += r[i];
-      if (w[i] < kMinWeight) continue;
-      const double wi = w[i];
-      const double x = points.x[i] - ref.x(), y = points.y[i] - ref.y(), z = points.z[i] - ref.z();
-      sw += wi;
-      s1[0] += wi * x;
-      s1[1] += wi * y;
-      s1[2] += wi * z;
-      s2[0] += wi * x * x;
-      s2[1] += wi * x * y;
-      s2[2] += wi * x * z;
-      s2[3] += wi * y * y;
-      s2[4] += wi * y * z;
-      s2[5] += wi * z * z;
+    // Moments about the previous centroid (close to the new one, so the sums stay well
+    // conditioned): float sums over blocks of kBlock points (vectorised), in double across
+    // blocks.
+    const float rx = plane.centroid.x(), ry = plane.centroid.y(), rz = plane.centroid.z();
+    double sums[11] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};  // support, w, wx, wy, wz, wxx, ...
+    alignas(64) float rb[kBlock], w[kBlock], px[kBlock], py[kBlock], pz[kBlock];
+    for (int start = 0; start < n; start += kBlock) {
+      const int m = std::min(kBlock, n - start);
+      const int padded = (m + kLanes - 1) / kLanes * kLanes;
+      for (int i = 0; i < m; ++i) {
+        const int g = start + i;
+        rb[i] = r[g];
+        const float wi = r[g] * var_j / (var_j + q[g]);
+        w[i] = Float(Bits(wi) & -static_cast<int32_t>(wi >= kMinWeight));
+        px[i] = x[g] - rx;
+        py[i] = y[g] - ry;
+        pz[i] = z[g] - rz;
+      }
+      for (int i = m; i < padded; ++i) rb[i] = w[i] = px[i] = py[i] = pz[i] = 0.0f;
+      sums[0] += Sum(rb, padded);
+      sums[1] += Sum(w, padded);
+      sums[2] += Dot(w, px, padded);
+      sums[3] += Dot(w, py, padded);
+      sums[4] += Dot(w, pz, padded);
+      sums[5] += Dot3(w, px, px, padded);
+      sums[6] += Dot3(w, px, py, padded);
+      sums[7] += Dot3(w, px, pz, padded);
+      sums[8] += Dot3(w, py, py, padded);
+      sums[9] += Dot3(w, py, pz, padded);
+      sums[10] += Dot3(w, pz, pz, padded);
     }
+    const double support = sums[0], sw = sums[1];
     plane.support = static_cast<float>(support);
     if (sw < 3.0) continue;  // too little support to fit; pruning decides its fate
-    const Eigen::Vector3d m(s1[0] / sw, s1[1] / sw, s1[2] / sw);
+    const Eigen::Vector3d m(sums[2] / sw, sums[3] / sw, sums[4] / sw);
     Eigen::Matrix3d scatter;
-    scatter << s2[0], s2[1], s2[2], s2[1], s2[3], s2[4], s2[2], s2[4], s2[5];
+    scatter << sums[5], sums[6], sums[7], sums[6], sums[8], sums[9], sums[7], sums[9], sums[10];
     scatter -= sw * m * m.transpose();
-    const Eigen::Vector3d mean = ref.cast<double>() + m;
+    const Eigen::Vector3d mean = plane.centroid.cast<double>() + m;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
     eig.computeDirect(scatter);
     Eigen::Vector3d normal = eig.eigenvectors().col(0);
@@ -130,8 +225,10 @@ int RunEm(const Cloud& points, const Options& options, int max_iterations,
     ++iteration;
     bool moved = false;
     for (size_t j = 0; j < planes->size() && !moved; ++j) {
-      const float cos_angle = std::min(1.0f, before[j].normal.dot((*planes)[j].normal));
-      moved = std::acos(cos_angle) > options.converged_angle ||
+      // The sine from the cross product: acos of a float dot product cannot resolve angles
+      // below about 3e-4 rad, so EM would never see itself converge.
+      const float sin_angle = before[j].normal.cross((*planes)[j].normal).norm();
+      moved = sin_angle > options.converged_angle ||
               std::fabs(before[j].d - (*planes)[j].d) > options.converged_offset;
     }
     if (!moved) break;

@@ -29,6 +29,8 @@ struct Options {
   int em_fraction = 60;
   int em_iterations = 8;           // E/M iterations per round (fewer once converged)
   int max_rounds = 6;              // rounds of EM + add/merge/prune
+  // The previous frame's planes seed EM with at least this sigma (metres): the sensor moved.
+  float seed_sigma = 0.0f;
   int max_planes = 24;             // mixture components at most
   float converged_angle = 1e-4f;   // radians: a plane moving less has converged
   float converged_offset = 1e-4f;  // metres
