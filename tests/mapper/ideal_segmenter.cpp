@@ -301,7 +301,7 @@ RunResult Run(Mapper& mapper, IdealSegmenter& segmenter,
     }
     const geometry::Segment2 seg{world.walls[best].a, world.walls[best].b};
     const int side = seg.Normal().dot(m.normal.head<2>()) > 0 ? 1 : 0;
-    per_wall[2 * best + side].push_back(0);
+    per_wall[2 * best + side].push_back(static_cast<int>(m.id));
     r.angle_error = std::max(r.angle_error, best_angle);
     r.end_error = std::max(r.end_error, best_dist);  // perpendicular part
     // Ends the mapper claims (static edges seen) must be true wall ends.
@@ -312,7 +312,13 @@ RunResult Run(Mapper& mapper, IdealSegmenter& segmenter,
       r.end_error_any = std::max(r.end_error_any, de);
     }
   }
-  for (const auto& v : per_wall) r.duplicates += v.size() > 1 ? static_cast<int>(v.size()) - 1 : 0;
+  for (size_t w = 0; w < per_wall.size(); ++w) {
+    const auto& v = per_wall[w];
+    if (v.size() < 2) continue;
+    r.duplicates += static_cast<int>(v.size()) - 1;
+    r.duplicate_ids += " wall " + std::to_string(w / 2) + ":";
+    for (int id : v) r.duplicate_ids += " " + std::to_string(id);
+  }
   return r;
 }
 
@@ -323,6 +329,7 @@ std::string Describe(const RunResult& r) {
                 "%.4f m, end err %.4f m, angle %.4f rad, motion model %d, lost %d",
                 r.ate_rmse, r.max_error, r.yaw_rmse, r.mapped, r.duplicates, r.unmatched,
                 r.end_error, r.end_error_any, r.angle_error, r.motion_model, r.lost);
+  if (r.duplicates > 0) return buf + std::string(";") + r.duplicate_ids;
   return buf;
 }
 

@@ -88,6 +88,7 @@ struct RunResult {
   int motion_model = 0;      // poses with status MOTION_MODEL
   int lost = 0;
   double max_error = 0.0;    // m, worst pose error
+  std::string duplicate_ids;  // per duplicated true wall: the mapped ids on it
 };
 
 // Runs the mapper over the trajectory and scores it against the world.

@@ -63,13 +63,9 @@ TEST(MapperScenario, HallwayWithDoorsNoisy) {
   ExpectNoisy(RunWorld(HallwayWithDoors(), Drive({{0, 0}, {10, 0}}, 1.0, 0.8), Noisy()));
 }
 
-// KNOWN FAILING (kept, not loosened; run with --gtest_also_run_disabled_tests): ATE and wall
-// errors meet the targets (office noisy ATE 0.9 cm, loop 0.9 cm, other sensor 1.1 cm), but the
-// office keeps 2 duplicate fragments (line-only walls seen briefly at the view's edge), the
-// noisy loop 2, and the other sensor's loop claims one wall end that is not one.
-TEST(MapperScenario, DISABLED_OfficeNoiseFree) { ExpectNoiseFree(RunWorld(Office(), OfficeRoute(), {})); }
+TEST(MapperScenario, OfficeNoiseFree) { ExpectNoiseFree(RunWorld(Office(), OfficeRoute(), {})); }
 
-TEST(MapperScenario, DISABLED_OfficeNoisy) { ExpectNoisy(RunWorld(Office(), OfficeRoute(), Noisy())); }
+TEST(MapperScenario, OfficeNoisy) { ExpectNoisy(RunWorld(Office(), OfficeRoute(), Noisy())); }
 
 // Issue 5: a 3-lap loop with recesses; the motion model at every turn, a pose every frame, and
 // the first lap's walls reused afterwards (loop closure, no duplicates).
@@ -91,7 +87,7 @@ TEST(MapperScenario, HallwayLoopNoiseFree) {
   ExpectLoop(RunWorld(HallwayLoop(10, 8, 2, 3), LoopRoute(3), {}), 0.01, 0.01);
 }
 
-TEST(MapperScenario, DISABLED_HallwayLoopNoisy) {
+TEST(MapperScenario, HallwayLoopNoisy) {
   ExpectLoop(RunWorld(HallwayLoop(10, 8, 2, 3), LoopRoute(3), Noisy()), 0.05, 0.05);
 }
 
@@ -103,7 +99,7 @@ TEST(MapperScenario, UnseenHallwayOtherSensor) {
   ExpectNoisy(RunWorld(HallwayWithDoors(16.0, 2.6), poses, Noisy(11), OtherSensor()));
 }
 
-TEST(MapperScenario, DISABLED_UnseenLoopOtherSensor) {
+TEST(MapperScenario, UnseenLoopOtherSensor) {
   const auto poses = Drive({{0, 0}, {11, 0}, {11, 5}, {0, 5}}, 1.3, 0.6, 30.0, 2);
   ExpectLoop(RunWorld(HallwayLoop(13, 7, 2.4, 2.5), poses, Noisy(13), OtherSensor()), 0.05, 0.05);
 }

@@ -56,6 +56,27 @@ TEST(LearnedFrustum, FindsTheBorderWhereCutEdgesPileUpDespiteANoisyCloseEdge) {
   EXPECT_FALSE(frustum.Clipped(4.0 * Vector2d(std::cos(half - 0.15), std::sin(half - 0.15))));
 }
 
+// Edges cut by the range limit pile up at one distance with nothing beyond; the limit is
+// learned from that, and not from a world whose walls all end inside the range.
+TEST(LearnedFrustum, LearnsTheRangeLimitOnlyWhereCutEdgesPileUp) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> bearing(-0.6, 0.6), range(0.5, 5.5);
+  std::normal_distribution<double> noise(0.0, 0.015);
+  LearnedFrustum small_world, corridor;
+  for (int k = 0; k < 500; ++k) {
+    const double b = bearing(rng), r = range(rng);
+    small_world.Observe(r * Vector2d(std::cos(b), std::sin(b)));
+    corridor.Observe(r * Vector2d(std::cos(b), std::sin(b)));
+    const double cut = 6.0 + noise(rng), cb = bearing(rng);
+    corridor.Observe(cut * Vector2d(std::cos(cb), std::sin(cb)));
+  }
+  EXPECT_TRUE(std::isinf(small_world.RangeLimit()));
+  EXPECT_NEAR(corridor.RangeLimit(), 6.0, 0.1);
+  EXPECT_TRUE(corridor.Clipped({5.99, 0.0}));
+  EXPECT_FALSE(corridor.Clipped({5.5, 0.0}));
+  EXPECT_FALSE(small_world.Clipped({5.99, 0.0}));
+}
+
 // A wall taken for seen whole (both edges steady) that is later seen longer was not whole:
 // an edge cut by the range stays put while the sensor turns in place. Its length is the whole
 // sighting's, not the mean with the partial one.

@@ -115,16 +115,15 @@ void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& 
     lo = placed.point, hi = lo + length * t;
   } else {
     lo = hi = placed.point;
-    const auto& all = plane.Observations();
-    for (size_t i = all.size(); i > 0; --i) {
-      auto pose = state.poses.find(all[i - 1].iteration);
-      if (pose == state.poses.end()) continue;
-      const Vector2d a = pose->second * all[i - 1].edge[0];
-      const Vector2d b = pose->second * all[i - 1].edge[1];
+    // Its extent as last seen, from the pose then.
+    const Observation& last = plane.Latest();
+    auto pose = state.poses.find(last.iteration);
+    if (pose != state.poses.end() || plane.latest_pose_known) {
+      const Pose2& from = pose != state.poses.end() ? pose->second : plane.latest_pose;
+      const Vector2d a = from * last.edge[0], b = from * last.edge[1];
       lo = placed.point + t * t.dot(a - placed.point);
       hi = placed.point + t * t.dot(b - placed.point);
       if (t.dot(hi - lo) < 0) std::swap(lo, hi);
-      break;
     }
   }
   *lo_out = lo;

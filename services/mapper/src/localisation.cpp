@@ -26,6 +26,60 @@ struct System {
 
 }  // namespace
 
+void LearnedFrustum::Observe(const Eigen::Vector2d& edge) {
+  const double bearing = std::abs(std::atan2(edge.y(), edge.x()));
+  max_bearing_ = std::max(max_bearing_, bearing);
+  const int bin = std::min(kBins - 1, static_cast<int>(bearing / kBinWidth));
+  ++counts_[bin];
+  // The pile-up: the fullest bin in the outer part of what has been seen.
+  if (bin > mode_bin_ && counts_[bin] >= counts_[mode_bin_]) mode_bin_ = bin;
+  if (counts_[bin] > counts_[mode_bin_] && bin * kBinWidth > 0.5 * max_bearing_) mode_bin_ = bin;
+  const int rbin = std::min(kRangeBins - 1, static_cast<int>(edge.norm() / kRangeBin));
+  ++range_counts_[rbin];
+  max_range_bin_ = std::max(max_range_bin_, rbin);
+  if (range_counts_[rbin] > range_counts_[range_mode_] && rbin > max_range_bin_ / 2) {
+    range_mode_ = rbin;
+  }
+  if (++observed_ % 64 == 0) UpdateRangeLimit();
+}
+
+void LearnedFrustum::UpdateRangeLimit() {
+  // A pile-up stands out from the distances just below it, and next to nothing lies beyond.
+  constexpr int kSpread = 3;   // bins either side of the mode that still belong to the pile
+  constexpr int kBelow = 25;   // bins (0.5 m) below it to compare with
+  int pile = 0, beyond = 0, below = 0;
+  for (int b = std::max(0, range_mode_ - kSpread); b <= range_mode_ + kSpread && b < kRangeBins; ++b) {
+    pile += range_counts_[b];
+  }
+  for (int b = range_mode_ + kSpread + 1; b < kRangeBins && b <= max_range_bin_; ++b) {
+    beyond += range_counts_[b];
+  }
+  for (int b = std::max(0, range_mode_ - kSpread - kBelow); b < range_mode_ - kSpread; ++b) {
+    below += range_counts_[b];
+  }
+  const double below_per_bin = static_cast<double>(below) / kBelow;
+  const bool stands_out = range_counts_[range_mode_] >= kMinPile &&
+                          range_counts_[range_mode_] > 5.0 * below_per_bin &&
+                          beyond <= pile / 50;
+  range_limit_ = stands_out ? (range_mode_ + kSpread + 1) * kRangeBin
+                            : std::numeric_limits<double>::infinity();
+}
+
+double LearnedFrustum::Limit() const {
+  if (counts_[mode_bin_] < kMinPile) return max_bearing_;
+  return std::min(max_bearing_, (mode_bin_ + 1) * kBinWidth);
+}
+
+double LearnedFrustum::RangeLimit() const { return range_limit_; }
+
+bool LearnedFrustum::Clipped(const Eigen::Vector2d& edge) const {
+  // The edge's bearing is uncertain by its position noise over its range.
+  const double range = edge.norm();
+  const double margin = kBearingMargin + std::atan2(kEdgeNoise, range);
+  if (std::abs(std::atan2(edge.y(), edge.x())) > Limit() - margin) return true;
+  return range > RangeLimit() - kEdgeNoise - 4 * kRangeBin;
+}
+
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
                       const LearnedFrustum& frustum, const LocalisationOptions& options) {
   PoseEstimate out;

@@ -7,17 +7,11 @@
 #include "relplane/mapper/backtracking.hpp"
 #include "relplane/mapper/global_map.hpp"
 #include "relplane/mapper/grouping.hpp"
+#include "relplane/mapper/map_cleanup.hpp"
 #include "relplane/mapper/registration.hpp"
 #include "relplane/mapper/relative_map.hpp"
 
 namespace relplane::mapper {
-namespace {
-
-constexpr double kMergeAngle = 0.05;     // rad
-constexpr double kMergeDistance = 0.1;   // m
-
-}  // namespace
-
 Mapper::Mapper(MapperOptions options) : options_(std::move(options)) {
   pose_ = {options_.start_pose.x, options_.start_pose.y, options_.start_pose.yaw};
 }
@@ -49,6 +43,12 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   const PoseEstimate estimate = Localise(iteration, visible);              // §II.D, §II.E
   pose_ = estimate.pose;
   state_.poses[iteration] = pose_;
+  for (int64_t id : visible) {
+    RltPlane* plane = state_.Plane(id);
+    if (plane == nullptr) continue;
+    plane->latest_pose = pose_;
+    plane->latest_pose_known = true;
+  }
   while (!state_.poses.empty() && state_.poses.begin()->first < iteration - 2000) {
     state_.poses.erase(state_.poses.begin());
   }
@@ -195,33 +195,7 @@ MapSnapshot Mapper::Map() const {
     m.end_known[1] = placed.known == Known::kPoint && (placed.ref == 1 || m.both_ends_known);
     snapshot.planes.push_back(std::move(m));
   }
-  // §II.D end: a mapped wall lying inside another on the same line is the same wall seen as a
-  // second rltplane (the loop was not closed on it); keep the better-observed one.
-  std::vector<bool> drop(snapshot.planes.size(), false);
-  for (size_t i = 0; i < snapshot.planes.size(); ++i) {
-    const MappedPlane& a = snapshot.planes[i];
-    for (size_t j = 0; j < snapshot.planes.size() && !drop[i]; ++j) {
-      const MappedPlane& b = snapshot.planes[j];
-      if (i == j || drop[j] || a.normal.dot(b.normal) < std::cos(kMergeAngle)) continue;
-      if (b.observations < a.observations || (b.observations == a.observations && j > i)) continue;
-      const Eigen::Vector2d n = b.normal.head<2>(), t(-n.y(), n.x());
-      const Eigen::Vector2d b0 = b.vertices[0].head<2>(), b1 = b.vertices[1].head<2>();
-      const double s0 = std::min(t.dot(b0), t.dot(b1)) - kMergeDistance;
-      const double s1 = std::max(t.dot(b0), t.dot(b1)) + kMergeDistance;
-      bool inside = true;
-      for (int e = 0; e < 2; ++e) {
-        const Eigen::Vector2d p = a.vertices[e].head<2>();
-        inside = inside && std::abs(n.dot(p) + b.d) < kMergeDistance && t.dot(p) >= s0 &&
-                 t.dot(p) <= s1;
-      }
-      drop[i] = inside;
-    }
-  }
-  std::vector<MappedPlane> kept;
-  for (size_t i = 0; i < snapshot.planes.size(); ++i) {
-    if (!drop[i]) kept.push_back(std::move(snapshot.planes[i]));
-  }
-  snapshot.planes = std::move(kept);
+  MergeDuplicateWalls(&snapshot.planes);  // §II.D end
   for (const Group& g : state_.groups) {
     snapshot.groups.push_back({g.id, g.relative.basis, g.members});
   }

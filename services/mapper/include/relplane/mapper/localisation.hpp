@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "relplane/common/geometry.hpp"
@@ -27,44 +28,41 @@ struct Sighting {
   Placement world;
 };
 
-// The sensor's horizontal field of view as learned from the edges it reports. Edges cut by the
-// view pile up at one bearing (every wall crossing the border gives one, every frame), while
-// wall ends spread over all bearings: the field of view is the most frequent bearing among the
-// widest ones. The widest bearing alone would do without noise, but one noisy edge close by
-// widens it for good and the cut edges then pass for wall ends. An edge near the border is cut
-// by the view, not a wall's end. (Range is not learned: in a small world no wall reaches it and
-// a far wall end would pass for the limit.)
+// The sensor's view as learned from the edges it reports. Edges cut by the view pile up at one
+// bearing (every wall crossing the border gives one, every frame), while wall ends spread over
+// all bearings: the field of view is the most frequent bearing among the widest ones. The
+// widest bearing alone would do without noise, but one noisy edge close by widens it for good
+// and the cut edges then pass for wall ends. The range limit is learned the same way, from a
+// pile-up of edge distances with next to nothing beyond it: in a small world no wall reaches
+// the range and nothing piles up there, so no limit is learned. An edge near either limit is
+// cut by the view, not a wall's end (a sensor turning in place sees a range-cut edge stand
+// still, like a wall end).
 class LearnedFrustum {
  public:
-  void Observe(const Eigen::Vector2d& edge) {
-    const double bearing = std::abs(std::atan2(edge.y(), edge.x()));
-    max_bearing_ = std::max(max_bearing_, bearing);
-    const int bin = std::min(kBins - 1, static_cast<int>(bearing / kBinWidth));
-    ++counts_[bin];
-    // The pile-up: the fullest bin in the outer part of what has been seen.
-    if (bin > mode_bin_ && counts_[bin] >= counts_[mode_bin_]) mode_bin_ = bin;
-    if (counts_[bin] > counts_[mode_bin_] && bin * kBinWidth > 0.5 * max_bearing_) mode_bin_ = bin;
-  }
+  void Observe(const Eigen::Vector2d& edge);
   // The half field of view: the pile-up's upper bin edge once it stands out, else the widest.
-  double Limit() const {
-    if (counts_[mode_bin_] < kMinPile) return max_bearing_;
-    return std::min(max_bearing_, (mode_bin_ + 1) * kBinWidth);
-  }
-  bool Clipped(const Eigen::Vector2d& edge) const {
-    // The edge's bearing is uncertain by its position noise over its range.
-    const double margin = kBearingMargin + std::atan2(kEdgeNoise, edge.norm());
-    return std::abs(std::atan2(edge.y(), edge.x())) > Limit() - margin;
-  }
+  double Limit() const;
+  // The range limit, or infinity while none stands out.
+  double RangeLimit() const;
+  bool Clipped(const Eigen::Vector2d& edge) const;
 
  private:
   static constexpr double kBearingMargin = 0.035;  // rad (2 degrees)
   static constexpr double kEdgeNoise = 0.03;       // m, a wall end's position noise (2 sigma)
   static constexpr double kBinWidth = 0.0087;      // rad (0.5 degrees)
   static constexpr int kBins = 362;                // up to pi
+  static constexpr double kRangeBin = 0.02;        // m
+  static constexpr int kRangeBins = 2500;          // up to 50 m
   static constexpr int kMinPile = 20;
+  void UpdateRangeLimit();
   double max_bearing_ = 0.0;
   int counts_[kBins] = {};
   int mode_bin_ = 0;
+  std::vector<int> range_counts_ = std::vector<int>(kRangeBins, 0);
+  int range_mode_ = 0;
+  int max_range_bin_ = 0;
+  int observed_ = 0;
+  double range_limit_ = std::numeric_limits<double>::infinity();
 };
 
 // Solves the sensor pose: yaw from the mean orientation difference, position by least squares

@@ -6,6 +6,7 @@
 #include <deque>
 #include <vector>
 
+#include "relplane/common/geometry.hpp"
 #include "relplane/mapper/observation.hpp"
 
 namespace relplane::mapper {
@@ -47,6 +48,11 @@ class RltPlane {
   // Which edges the comparisons found static in the current interval (set each iteration).
   bool static_now[2] = {false, false};
   int64_t static_now_iteration = -1;
+
+  // The pose estimated at its latest observation: its extent on the map once the pose history
+  // has forgotten that iteration (a wall known only by its line).
+  geometry::Pose2 latest_pose;
+  bool latest_pose_known = false;
 
   // Groups this plane belongs to, in creation order (§II.B).
   std::vector<int64_t> groups;

@@ -1,0 +1,16 @@
+#pragma once
+// §II.D end, on the published map: one wall seen as more than one rltplane (the loop was not
+// closed on it, or it was only ever seen in pieces at the edge of the view) is shown once.
+
+#include <vector>
+
+#include "relplane/mapper/mapper.hpp"
+
+namespace relplane::mapper {
+
+// Drops a mapped wall lying inside another on the same line (the better-observed one stays),
+// and joins a piece known only by its line (no end known) to the wall on the same line that it
+// may continue: that wall's facing end is not known and no other wall crosses the gap.
+void MergeDuplicateWalls(std::vector<MappedPlane>* planes);
+
+}  // namespace relplane::mapper

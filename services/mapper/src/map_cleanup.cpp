@@ -1,0 +1,130 @@
+#include "relplane/mapper/map_cleanup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace relplane::mapper {
+namespace {
+
+using Eigen::Vector2d;
+
+constexpr double kMergeAngle = 0.05;    // rad
+constexpr double kMergeDistance = 0.1;  // m
+
+Vector2d End(const MappedPlane& m, int e) { return m.vertices[e].head<2>(); }
+
+// The wall's direction (lo -> hi).
+Vector2d DirectionOf(const MappedPlane& m) {
+  const Vector2d n = m.normal.head<2>();
+  return {-n.y(), n.x()};
+}
+
+bool OnLine(const MappedPlane& line, const MappedPlane& other) {
+  if (line.normal.dot(other.normal) < std::cos(kMergeAngle)) return false;
+  const Vector2d n = line.normal.head<2>();
+  for (int e = 0; e < 2; ++e) {
+    if (std::abs(n.dot(End(other, e)) + line.d) >= kMergeDistance) return false;
+  }
+  return true;
+}
+
+// Does another wall reach `line`'s line between coordinates s0 < s1 along it?
+bool GapCrossed(const std::vector<MappedPlane>& planes, const std::vector<bool>& drop, size_t li,
+                size_t fi, double s0, double s1) {
+  const MappedPlane& line = planes[li];
+  const Vector2d n = line.normal.head<2>(), t = DirectionOf(line);
+  for (size_t k = 0; k < planes.size(); ++k) {
+    if (k == li || k == fi || drop[k]) continue;
+    const Vector2d p = End(planes[k], 0), q = End(planes[k], 1);
+    const double dp = n.dot(p) + line.d, dq = n.dot(q) + line.d;
+    // The point of segment k nearest the line: where it crosses, else its nearer end.
+    Vector2d x = std::abs(dp) < std::abs(dq) ? p : q;
+    if (dp * dq < 0.0) x = p + (q - p) * (dp / (dp - dq));
+    if (std::abs(n.dot(x) + line.d) >= kMergeDistance) continue;
+    const double s = t.dot(x);
+    if (s > s0 - kMergeDistance && s < s1 + kMergeDistance) return true;
+  }
+  return false;
+}
+
+// Stretches `wall` along its line to cover [s0, s1]; an end that moves is no longer known.
+void Extend(MappedPlane* wall, double s0, double s1, int64_t observations) {
+  const Vector2d t = DirectionOf(*wall);
+  const double lo = t.dot(End(*wall, 0)), hi = t.dot(End(*wall, 1));
+  const double z0 = wall->vertices[0].z(), z1 = wall->vertices[2].z();
+  const Vector2d a = End(*wall, 0) + (std::min(lo, s0) - lo) * t;
+  const Vector2d b = End(*wall, 1) + (std::max(hi, s1) - hi) * t;
+  if (s0 < lo) wall->end_known[0] = false;
+  if (s1 > hi) wall->end_known[1] = false;
+  wall->both_ends_known = wall->end_known[0] && wall->end_known[1];
+  wall->vertices = {{a.x(), a.y(), z0}, {b.x(), b.y(), z0}, {b.x(), b.y(), z1}, {a.x(), a.y(), z1}};
+  const Vector2d mid = 0.5 * (a + b);
+  wall->centroid = Eigen::Vector3d(mid.x(), mid.y(), 0.5 * (z0 + z1));
+  wall->observations += observations;
+}
+
+}  // namespace
+
+void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
+  std::vector<MappedPlane>& planes = *planes_in;
+  std::vector<bool> drop(planes.size(), false);
+  // A wall lying inside another on the same line is the same wall seen as a second rltplane;
+  // keep the better-observed one.
+  for (size_t i = 0; i < planes.size(); ++i) {
+    const MappedPlane& a = planes[i];
+    for (size_t j = 0; j < planes.size() && !drop[i]; ++j) {
+      const MappedPlane& b = planes[j];
+      if (i == j || drop[j] || !OnLine(b, a)) continue;
+      if (b.observations < a.observations || (b.observations == a.observations && j > i)) continue;
+      const Vector2d t = DirectionOf(b);
+      const double s0 = std::min(t.dot(End(b, 0)), t.dot(End(b, 1))) - kMergeDistance;
+      const double s1 = std::max(t.dot(End(b, 0)), t.dot(End(b, 1))) + kMergeDistance;
+      bool inside = true;
+      for (int e = 0; e < 2; ++e) inside = inside && t.dot(End(a, e)) >= s0 && t.dot(End(a, e)) <= s1;
+      drop[i] = inside;
+    }
+  }
+  // A piece known only by its line continues the nearest wall on its line that may go on
+  // towards it (the facing end unknown) when nothing stands in the gap.
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t i = 0; i < planes.size(); ++i) {
+      const MappedPlane& piece = planes[i];
+      if (drop[i] || piece.end_known[0] || piece.end_known[1]) continue;
+      size_t best = planes.size();
+      double best_gap = std::numeric_limits<double>::infinity();
+      for (size_t j = 0; j < planes.size(); ++j) {
+        if (j == i || drop[j] || !OnLine(planes[j], piece)) continue;
+        const MappedPlane& wall = planes[j];
+        const Vector2d t = DirectionOf(wall);
+        const double lo = t.dot(End(wall, 0)), hi = t.dot(End(wall, 1));
+        const double p0 = std::min(t.dot(End(piece, 0)), t.dot(End(piece, 1)));
+        const double p1 = std::max(t.dot(End(piece, 0)), t.dot(End(piece, 1)));
+        double gap = 0.0, g0 = 0.0, g1 = 0.0;
+        if (p0 > hi) {
+          if (wall.end_known[1]) continue;
+          gap = p0 - hi, g0 = hi, g1 = p0;
+        } else if (p1 < lo) {
+          if (wall.end_known[0]) continue;
+          gap = lo - p1, g0 = p1, g1 = lo;
+        }
+        if (gap >= best_gap || (gap > 0.0 && GapCrossed(planes, drop, j, i, g0, g1))) continue;
+        best = j, best_gap = gap;
+      }
+      if (best == planes.size()) continue;
+      const Vector2d t = DirectionOf(planes[best]);
+      Extend(&planes[best], std::min(t.dot(End(piece, 0)), t.dot(End(piece, 1))),
+             std::max(t.dot(End(piece, 0)), t.dot(End(piece, 1))), piece.observations);
+      drop[i] = true;
+      changed = true;
+    }
+  }
+  std::vector<MappedPlane> kept;
+  for (size_t i = 0; i < planes.size(); ++i) {
+    if (!drop[i]) kept.push_back(std::move(planes[i]));
+  }
+  planes = std::move(kept);
+}
+
+}  // namespace relplane::mapper
