@@ -128,6 +128,14 @@ FeedResult FeedEncoded(RunRecorder& recorder, const std::string& channel, const 
   if (channel == "STATUS") {
     relplane::status_t msg;
     if (!bus::Decode(data, size, &msg, &why)) return rejected(why);
+    // Counters are summed over services: a hostile value must not overflow the sum (found by
+    // relplane-fuzz-logger). 2^40 frames is 1,000 years at 30 Hz.
+    constexpr int64_t kMaxCounter = int64_t{1} << 40;
+    for (const int64_t counter : {msg.frames_processed, msg.frames_dropped, msg.inputs_rejected}) {
+      if (counter < 0 || counter > kMaxCounter) {
+        return rejected("counter " + std::to_string(counter) + " out of range");
+      }
+    }
     recorder.OnStatus(FromMessage(msg), receive_us);
     return FeedResult::kUsed;
   }

@@ -200,7 +200,8 @@ std::string RenderMapSvg(const MapPicture& pic) {
   out += svg::Text(kMargin, 22, "relplane map: x-y plane, world frame, metres", "start",
                    "font-size=\"15\" font-weight=\"bold\"");
   // A light grid at the scale bar's step gives the eye the units everywhere.
-  const double step = NiceStep(span.x(), 10.0);
+  // From the larger span: a hostile pose far along y must not make millions of lines.
+  const double step = NiceStep(std::max(span.x(), span.y()), 10.0);
   std::string grid;
   const char* tick_style = "fill=\"#999999\" font-size=\"10\"";
   // Integer multiples of the step, so labels print as round numbers.
