@@ -3,6 +3,8 @@
 // mapper is timed. Run by hand: relplane-bench-mapper.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -88,6 +90,39 @@ void BM_IterationWith2000PlaneMap(benchmark::State& state) {
 }
 BENCHMARK(BM_IterationWith2000PlaneMap)->Unit(benchmark::kMicrosecond)->Iterations(300)
     ->Repetitions(5)->ReportAggregatesOnly(true);
+
+// Issue 5: the time per iteration while loops close. The 3-lap loop with door recesses at
+// sigma = 1 cm plane noise (the mapper_scenarios_test fixture); laps 2 and 3 re-see the first
+// lap's walls, close the loop and run the pose graph over the groups. Every iteration of laps
+// 2-3 is timed; the counters give its median and 99th percentile (microseconds).
+void BM_IterationWhileLoopsClose(benchmark::State& state) {
+  IdealSegmenter segmenter(HallwayLoop(10, 8, 2, 3), {}, {0.003, 0.003, 0.015, 7});
+  const auto poses = Drive({{0, 0}, {8, 0}, {8, 6}, {0, 6}}, 1.0, 0.8, 30.0, 3);
+  const auto frames = Frames(segmenter, poses);
+  const size_t lap = frames.size() / 3;
+  std::vector<double> times;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Mapper mapper;
+    size_t k = 0;
+    for (; k < lap; ++k) mapper.Process(static_cast<int64_t>(k), frames[k]);
+    state.ResumeTiming();
+    for (; k < frames.size(); ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const auto est = mapper.Process(static_cast<int64_t>(k), frames[k]);
+      const auto t1 = std::chrono::steady_clock::now();
+      benchmark::DoNotOptimize(est);
+      times.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+    }
+  }
+  std::sort(times.begin(), times.end());
+  state.counters["p50_us"] = times[times.size() / 2];
+  state.counters["p99_us"] = times[times.size() * 99 / 100];
+  state.counters["max_us"] = times.back();
+  state.counters["iterations_timed"] = static_cast<double>(times.size());
+}
+BENCHMARK(BM_IterationWhileLoopsClose)->Unit(benchmark::kMillisecond)->Iterations(1)
+    ->Repetitions(3);
 
 }  // namespace
 

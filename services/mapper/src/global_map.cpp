@@ -230,6 +230,7 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
   if (options.graph.enabled && evidence > state.loop_evidence) {
     state.loop_evidence = evidence;
     const PoseGraphResult solved = OptimiseGroupPlacements(state, options.graph);
+    ++state.graph_solves;
     if (solved.cost_after < solved.cost_before) {
       state.global.clear();
       state.placed_by.clear();

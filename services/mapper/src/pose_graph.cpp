@@ -80,6 +80,7 @@ Normal Linearise(const std::vector<Tie>& ties, const std::vector<geometry::Pose2
   const int n = static_cast<int>(x.size());
   Normal eq;
   eq.g = Eigen::VectorXd::Zero(3 * n);
+  eq.h.reserve(ties.size() * 3 * 36 + 3 * n);
   const double wa = 1.0 / (options.angle_sigma * options.angle_sigma);
   const double wp = 1.0 / (options.position_sigma * options.position_sigma);
   for (const Tie& t : ties) {
@@ -168,7 +169,7 @@ PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptio
       x[k].yaw = geometry::WrapAngle(x[k].yaw + step(3 * k + 2));
     }
     result.iterations = iter + 1;
-    if (step.cwiseAbs().maxCoeff() < 1e-7) break;
+    if (step.cwiseAbs().maxCoeff() < 1e-5) break;  // m and rad: far below the map's noise
   }
   result.cost_after = Linearise(ties, x, x0, options).cost;
   // Keep the result only if it explains the ties better (a failed solve leaves the map alone).

@@ -68,6 +68,7 @@ struct MapperState {
   int64_t first_iteration = -1;
   bool map_changed = false;
   int loop_evidence = 0;  // loop-closing ties seen so far (pose_graph.hpp)
+  int graph_solves = 0;   // pose graph solutions run so far
 
   RltPlane* Plane(int64_t id) {
     auto it = planes.find(id);
