@@ -58,6 +58,21 @@ void Place(MapperState& state, int64_t id, int64_t now, const GroupingOptions& o
   }
 }
 
+// Is there a group holding `r` and every other grouped plane of this view?
+bool CoveredByAGroup(MapperState& state, const RltPlane& r, const std::vector<int64_t>& visible) {
+  for (int64_t g : r.groups) {
+    const auto& members = state.groups[g].members;
+    bool all = true;
+    for (int64_t other : visible) {
+      const RltPlane* o = state.Plane(other);
+      if (o == nullptr || o->groups.empty() || other == r.Id()) continue;
+      all = all && std::find(members.begin(), members.end(), other) != members.end();
+    }
+    if (all) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 int CommonRecent(const RltPlane& a, const RltPlane& b, int64_t now, int window) {
@@ -98,13 +113,16 @@ void UpdateGroups(MapperState& state, const std::vector<int64_t>& visible, int64
   }
   state.ungrouped = std::move(waiting);
   // Re-seen rltplanes (backtracking, loop closure: §II.A end) rejoin the current groups so the
-  // new relative maps link to them.
+  // new relative maps link to them, unless one old group already holds it with every other
+  // grouped plane in view: that group's relative map covers the view, and a second lap adds
+  // no group there (the number of groups stays bounded on a route driven again and again).
   const int n = static_cast<int>(state.groups.size());
   for (int64_t id : visible) {
     RltPlane* r = state.Plane(id);
     if (r == nullptr || r->groups.empty()) continue;
     if (r->groups.back() >= n - options.recent_groups) continue;
     if (CommonRecent(*r, *r, now, options.covisible_window) < options.min_common) continue;
+    if (CoveredByAGroup(state, *r, visible)) continue;
     Place(state, id, now, options);
   }
 }
