@@ -33,7 +33,6 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   ReadPositive(r, "em_fraction", &o.em_fraction);
   ReadPositive(r, "em_iterations", &o.em_iterations);
   ReadPositive(r, "max_rounds", &o.max_rounds);
-  ReadNonNegative(r, "seed_sigma", &o.seed_sigma);
   ReadPositive(r, "max_planes", &o.max_planes);
   ReadPositive(r, "converged_angle", &o.converged_angle);
   ReadPositive(r, "converged_offset", &o.converged_offset);
@@ -54,6 +53,7 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   ReadNonNegative(r, "reach_spacings", &o.reach_spacings);
   ReadPositive(r, "max_reach", &o.max_reach);
   ReadPositive(r, "max_cells", &o.max_cells);
+  ReadPositive(r, "fit_points_max", &o.fit_points_max);
   ReadPositive(r, "vertical_max_nz", &o.vertical_max_nz);
   r.Read("seed", &o.seed);
   long max_points = static_cast<long>(s.max_points);

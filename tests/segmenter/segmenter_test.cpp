@@ -66,6 +66,31 @@ TEST(Segmenter, OneCentimetreNoiseWithinOneDegreeAndTwoCentimetres) {
 
 TEST(Segmenter, TwoCentimetreNoiseStillFindsThePlanes) { ExpectAccuracy(0.02, 2.0, 0.03); }
 
+// A 640 x 480 cloud is fitted to one in four of its points (Options::fit_points_max): the same
+// targets hold, and counts and extents still cover every point.
+TEST(Segmenter, LargeUnorganizedCloudsMeetTheSameTargets) {
+  for (double sigma : {0.0, 0.01}) {
+    for (const auto& world : {testing::Hallway(), testing::Office()}) {
+      Sensor sensor = AtPose(1, -0.3, 15, sigma);
+      sensor.width = 640;
+      sensor.height = 480;
+      const Scan scan = RenderUnorganized(world, sensor);
+      Segmenter segmenter;
+      const Result r = segmenter.Segment(scan.cloud);
+      const Score s = Evaluate(r.planes, world, scan, sensor);
+      SCOPED_TRACE("sigma " + std::to_string(sigma));
+      EXPECT_GE(s.Precision(), 0.95);
+      EXPECT_GE(s.Recall(), 0.95);
+      EXPECT_LE(s.median_angle_deg, sigma > 0 ? 1.0 : 0.2);
+      EXPECT_LE(s.median_offset_m, sigma > 0 ? 0.02 : 0.005);
+      int64_t supported = 0;
+      for (const auto& p : r.planes) supported += p.num_points;
+      EXPECT_LE(supported, r.assigned_points);
+      EXPECT_GT(supported, r.assigned_points * 9 / 10);
+    }
+  }
+}
+
 std::vector<DetectedPlane> PlanesFacing(const std::vector<DetectedPlane>& planes,
                                         const Eigen::Vector3f& normal, float d) {
   std::vector<DetectedPlane> out;

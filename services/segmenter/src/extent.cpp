@@ -16,7 +16,9 @@ constexpr float kTrimSigmas = 2.5f;
 
 struct Piece {
   int plane = 0;  // the EM plane it came from
-  int count = 0;
+  int support = 0;  // all its points
+  int count = 0;    // the points that enter the fit (sum, sum_sq): one in `stride`
+  double stride = 1.0;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d sum_sq = Eigen::Matrix3d::Zero();
   bool kept = false;
@@ -50,9 +52,9 @@ void Refit(const Eigen::Vector3f& origin, Piece* piece) {
   piece->out.normal = normal.cast<float>();
   piece->out.d = static_cast<float>(d);
   piece->out.centroid = centroid.cast<float>();
-  piece->out.num_points = piece->count;
+  piece->out.num_points = piece->support;
   piece->out.rms = static_cast<float>(std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / n));
-  piece->scatter = scatter;
+  piece->scatter = piece->stride * scatter;  // as if every point had entered the fit
 }
 
 // Refits the piece to its trimmed moments; the extent's axes (u, v) and centroid frame stay,
@@ -60,6 +62,8 @@ void Refit(const Eigen::Vector3f& origin, Piece* piece) {
 void TrimmedRefit(Piece* p) {
   if (p->trimmed_count < 3) return;
   Piece trimmed;
+  trimmed.support = p->support;
+  trimmed.stride = p->stride;
   trimmed.count = p->trimmed_count;
   trimmed.sum = p->trimmed_sum;
   trimmed.sum_sq = p->trimmed_sum_sq;
@@ -72,7 +76,8 @@ void TrimmedRefit(Piece* p) {
 }
 
 // What the second pass does with a cell's points.
-constexpr uint8_t kTrimPoints = 1;  // some may lie beyond the trim: test each
+constexpr uint8_t kTrimPoints = 1;  // some may lie beyond the trim: test each, and take out
+                                    // the moments of those beyond
 constexpr uint8_t kExtremes = 2;    // a boundary cell: its points may shape the extent
 
 // Whether every point of the cell lies within the piece's trim: the distance to the piece's
@@ -104,24 +109,25 @@ void PlanSecondPass(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces) {
     const Cell& cell = w->cells[s];
     const CellMoments& m = w->moments[s];
     if (!Interior(*w, s)) w->mode[s] |= kExtremes;
-    if (WithinTrim(w->grids[cell.plane], cell, m, p)) {
-      m.all.AddTo(p.out.centroid, &p.trimmed_count, &p.trimmed_sum, &p.trimmed_sum_sq);
-    } else {
+    if (!WithinTrim(w->grids[cell.plane], cell, m, p)) {
       w->mode[s] |= kTrimPoints;
+      w->finish[s].beyond.ref = m.all.ref;
     }
   }
 }
 
 // Second pass over the points, in cloud order, of the cells that need it: the moments of the
-// points near the first fit, so the final fit ignores what the piece caught from a
-// neighbouring surface; extents along each piece's own refitted axes. An interior cell cannot
+// points beyond the trim of the first fit, taken out of the cell's so the final fit ignores
+// what the piece caught from a neighbouring surface; extents along each piece's own refitted axes. An interior cell cannot
 // hold an extreme point (to within a cell's rotation between the EM and the piece's axes).
-void TrimAndExtend(const Cloud& cloud, PieceWorkspace::Buffers* w, std::vector<Piece>* pieces,
-                   std::vector<int32_t>* piece_labels) {
+void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
+                   std::vector<Piece>* pieces, std::vector<int32_t>* piece_labels) {
   const float* x = cloud.x.data();
   const float* y = cloud.y.data();
   const float* z = cloud.z.data();
-  for (size_t i = 0; i < cloud.size(); ++i) {
+  const size_t stride = FitStride(cloud.size(), options);
+  for (size_t i = 0, phase = 0; i < cloud.size();
+       ++i, phase = phase + 1 == stride ? 0 : phase + 1) {
     const int32_t cell = w->cell_of_point[i];
     if (cell < 0) continue;
     if (piece_labels) {
@@ -134,7 +140,9 @@ void TrimAndExtend(const Cloud& cloud, PieceWorkspace::Buffers* w, std::vector<P
     CellFinish& c = w->finish[cell];
     const Eigen::Vector3f point(x[i], y[i], z[i]);
     const Eigen::Vector3f q = point - p.out.centroid;
-    if ((mode & kTrimPoints) && std::fabs(p.out.normal.dot(q)) <= p.trim) c.trimmed.Add(point);
+    if ((mode & kTrimPoints) && phase == 0 && std::fabs(p.out.normal.dot(q)) > p.trim) {
+      c.beyond.AddAboutRef(point);  // a point that entered the cell's moments
+    }
     if (!(mode & kExtremes)) continue;
     const Eigen::Vector2f ab(p.u.dot(q), p.v.dot(q));
     if (p.vertical) {
@@ -163,9 +171,9 @@ void Describe(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces, std::vecto
     Piece& p = (*pieces)[piece];
     if (!p.kept) continue;
     const CellFinish& c = w->finish[s];
-    if (w->mode[s] & kTrimPoints) {
-      c.trimmed.AddTo(p.out.centroid, &p.trimmed_count, &p.trimmed_sum, &p.trimmed_sum_sq);
-    }
+    const LocalMoments& all = w->moments[s].all;
+    const LocalMoments trimmed = (w->mode[s] & kTrimPoints) ? all.Minus(c.beyond) : all;
+    trimmed.AddTo(p.out.centroid, &p.trimmed_count, &p.trimmed_sum, &p.trimmed_sum_sq);
     if (p.vertical || !(w->mode[s] & kExtremes)) continue;
     for (const auto& e : {c.lo_a, c.hi_a, c.lo_b, c.hi_b}) hull_points[piece].push_back(e);
   }
@@ -214,10 +222,12 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
     if (w.piece_of[s] < 0) continue;
     Piece& p = pieces[w.piece_of[s]];
     p.plane = w.cells[s].plane;
+    p.support += w.cells[s].count;
+    p.stride = static_cast<double>(FitStride(cloud.size(), options));
     w.moments[s].all.AddTo(w.grids[p.plane].origin, &p.count, &p.sum, &p.sum_sq);
   }
   for (Piece& p : pieces) {
-    p.kept = p.count >= options.min_points;
+    p.kept = p.support >= options.min_points && p.count >= 3;
     if (!p.kept) continue;
     Refit(w.grids[p.plane].origin, &p);
     p.vertical = std::fabs(p.out.normal.z()) < options.vertical_max_nz;
@@ -225,7 +235,7 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
     p.trim = kTrimSigmas * std::max(p.out.rms, options.sigma_min);
   }
   PlanSecondPass(&w, &pieces);
-  TrimAndExtend(cloud, &w, &pieces, piece_labels);
+  TrimAndExtend(cloud, options, &w, &pieces, piece_labels);
   std::vector<PieceStats> described;
   std::vector<int32_t> index;
   Describe(&w, &pieces, &described, &index);

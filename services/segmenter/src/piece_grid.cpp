@@ -50,6 +50,11 @@ void PlaneAxes(const Eigen::Vector3f& n, bool vertical, Eigen::Vector3f* u, Eige
   *v = n.cross(*u);
 }
 
+size_t FitStride(size_t n, const Options& options) {
+  const size_t most = static_cast<size_t>(std::max(1, options.fit_points_max));
+  return std::max<size_t>(1, (n + most - 1) / most);
+}
+
 void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
                const std::vector<uint8_t>& ambiguous, const std::vector<EmPlane>& planes,
                const Options& options, PieceWorkspace::Buffers* w) {
@@ -65,23 +70,51 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     PlaneAxes(planes[j].normal, std::fabs(planes[j].normal.z()) < options.vertical_max_nz, &g.u,
               &g.v);
   }
-  // One pass in cloud order: each point's coordinates in its plane's grid, and the bounds.
+  // One pass in cloud order: each point's coordinates in its plane's grid, and the bounds. The
+  // bounds and counts are kept per plane and lane (point index mod kLanes): consecutive points
+  // of one plane then update different accumulators instead of waiting on each other.
+  constexpr size_t kLanes = 4;
+  const size_t k = planes.size();
+  std::vector<float> a_lo(k * kLanes, kInf), a_hi(k * kLanes, -kInf);
+  std::vector<float> b_lo(k * kLanes, kInf), b_hi(k * kLanes, -kInf);
+  std::vector<int> count(k * kLanes, 0);
+  std::vector<float> axes(k * 9);  // origin, u, v per plane
+  for (size_t j = 0; j < k; ++j) {
+    const PlaneGrid& g = w->grids[j];
+    for (int c = 0; c < 3; ++c) {
+      axes[j * 9 + c] = g.origin[c];
+      axes[j * 9 + 3 + c] = g.u[c];
+      axes[j * 9 + 6 + c] = g.v[c];
+    }
+  }
   w->a.resize(n);
   w->b.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const int32_t l = labels[i];
     if (l < 0) continue;
-    PlaneGrid& g = w->grids[l];
-    const float qx = x[i] - g.origin.x(), qy = y[i] - g.origin.y(), qz = z[i] - g.origin.z();
-    const float a = g.u.x() * qx + g.u.y() * qy + g.u.z() * qz;
-    const float b = g.v.x() * qx + g.v.y() * qy + g.v.z() * qz;
+    const float* g = &axes[static_cast<size_t>(l) * 9];
+    const float qx = x[i] - g[0], qy = y[i] - g[1], qz = z[i] - g[2];
+    const float a = g[3] * qx + g[4] * qy + g[5] * qz;
+    const float b = g[6] * qx + g[7] * qy + g[8] * qz;
     w->a[i] = a;
     w->b[i] = b;
-    ++g.points;
-    g.a_lo = std::min(g.a_lo, a);
-    g.a_hi = std::max(g.a_hi, a);
-    g.b_lo = std::min(g.b_lo, b);
-    g.b_hi = std::max(g.b_hi, b);
+    const size_t slot = static_cast<size_t>(l) * kLanes + (i & (kLanes - 1));
+    ++count[slot];
+    a_lo[slot] = std::min(a_lo[slot], a);
+    a_hi[slot] = std::max(a_hi[slot], a);
+    b_lo[slot] = std::min(b_lo[slot], b);
+    b_hi[slot] = std::max(b_hi[slot], b);
+  }
+  for (size_t j = 0; j < k; ++j) {
+    PlaneGrid& g = w->grids[j];
+    for (size_t lane = 0; lane < kLanes; ++lane) {
+      const size_t slot = j * kLanes + lane;
+      g.points += count[slot];
+      g.a_lo = std::min(g.a_lo, a_lo[slot]);
+      g.a_hi = std::max(g.a_hi, a_hi[slot]);
+      g.b_lo = std::min(g.b_lo, b_lo[slot]);
+      g.b_hi = std::max(g.b_hi, b_hi[slot]);
+    }
   }
   size_t slots = 0;
   for (PlaneGrid& g : w->grids) {
@@ -106,24 +139,28 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   w->moments.clear();
   w->cell_of_point.assign(n, -1);
   // Second pass in cloud order: the cells and their moments.
-  for (size_t i = 0; i < n; ++i) {
+  const size_t stride = FitStride(n, options);
+  for (size_t i = 0, phase = 0; i < n; ++i, phase = phase + 1 == stride ? 0 : phase + 1) {
     const int32_t l = labels[i];
     if (l < 0) continue;
     const PlaneGrid& g = w->grids[l];
     if (!g.used) continue;
-    const int ix = std::min(g.w - 1, static_cast<int>((w->a[i] - g.a_lo) / g.cell));
-    const int iy = std::min(g.h - 1, static_cast<int>((w->b[i] - g.b_lo) / g.cell));
+    const float inv_cell = 1.0f / g.cell;
+    const int ix = std::min(g.w - 1, static_cast<int>((w->a[i] - g.a_lo) * inv_cell));
+    const int iy = std::min(g.h - 1, static_cast<int>((w->b[i] - g.b_lo) * inv_cell));
     int32_t& slot = w->slot_of[g.base + static_cast<size_t>(iy) * g.w + ix];
     if (slot < 0) {
       slot = static_cast<int32_t>(w->cells.size());
-      w->cells.push_back(Cell{l, ix, iy});
+      w->cells.push_back(Cell{l, ix, iy, 0});
       w->moments.emplace_back();
     }
     w->cell_of_point[i] = slot;
+    ++w->cells[slot].count;
     CellMoments& c = w->moments[slot];
+    c.solid += ambiguous.empty() || !ambiguous[i];
+    if (phase != 0) continue;
     const Eigen::Vector3f p(x[i], y[i], z[i]);
     const float e = g.n.dot(p - g.origin);
-    c.solid += ambiguous.empty() || !ambiguous[i];
     c.e_lo = std::min(c.e_lo, e);
     c.e_hi = std::max(c.e_hi, e);
     c.all.Add(p);

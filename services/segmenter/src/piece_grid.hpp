@@ -17,26 +17,27 @@ namespace relplane::segmenter {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// Per occupied cell, what binning every point touches, in one cache line: the points'
-// moments, how many are solid (not on the strip where two planes meet), and the range of their
-// distances to the EM plane. Random access per point stays within a small array.
+// Per occupied cell, what binning touches, in one cache line: the moments of its points that
+// enter the fits (one in FitStride), how many of its points are solid (not on the strip where
+// two planes meet), and the range of their distances to the EM plane.
 struct alignas(64) CellMoments {
   LocalMoments all;
   int solid = 0;
   float e_lo = kInf, e_hi = -kInf;
 };
 
-// Per occupied cell: where it is.
+// Per occupied cell: where it is and how many points it holds.
 struct Cell {
   int32_t plane = 0;
   int ix = 0, iy = 0;
+  int count = 0;
 };
 
-// Per occupied cell, second pass: the moments of the points near the piece's first fit (for a
-// cell with points beyond the trim) and the extreme points along the piece's own axes (for a
-// cell on the piece's boundary).
+// Per occupied cell, second pass: the moments of its points beyond the trim of the piece's first
+// fit (about the cell's reference point), and the extreme points along the piece's own axes
+// (for a cell on the piece's boundary).
 struct CellFinish {
-  LocalMoments trimmed;
+  LocalMoments beyond;
   Eigen::Vector2f lo_a{kInf, 0}, hi_a{-kInf, 0}, lo_b{0, kInf}, hi_b{0, -kInf};
 };
 
@@ -70,9 +71,13 @@ struct PieceWorkspace::Buffers {
 // follows the wall's vertical edges; otherwise any orthonormal pair.
 void PlaneAxes(const Eigen::Vector3f& n, bool vertical, Eigen::Vector3f* u, Eigen::Vector3f* v);
 
+// Points of a cloud of n points that enter the fits: one in FitStride (see
+// Options::fit_points_max).
+size_t FitStride(size_t n, const Options& options);
+
 // Bins the points of every plane with at least options.min_points labelled points into that
 // plane's grid (coarsened until it has at most options.max_cells cells): fills grids, cells
-// (count, solid count, moments) and cell_of_point.
+// (count, solid count, moments of the points that enter the fits) and cell_of_point.
 void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
                const std::vector<uint8_t>& ambiguous, const std::vector<EmPlane>& planes,
                const Options& options, PieceWorkspace::Buffers* w);

@@ -127,11 +127,6 @@ Result Segmenter::Segment(const Cloud& input) {
                                    static_cast<int>(std::ceil(options_.min_points * ratio * 0.5f)));
   std::mt19937 rng(options_.seed);
   std::vector<EmPlane> planes = previous_;
-  // The sensor has moved since: a seed may be off by a few centimetres (a wall 5 m away turns
-  // 10 cm with a 1 degree yaw). With its learnt sigma of a few millimetres the points would lie
-  // beyond its reach and the seed would be pruned and proposed again; a wider start lets EM pull
-  // it onto its points, and sigma is learnt back down.
-  for (EmPlane& p : planes) p.sigma = std::max(p.sigma, options_.seed_sigma);
   Responsibilities resp;
   for (int round = 0; round < options_.max_rounds; ++round) {
     result.rounds = round + 1;

@@ -26,6 +26,37 @@ struct LocalMoments {
     szz += z * z;
   }
 
+  // Adds a point about the reference already set (`ref`), even as the first point.
+  void AddAboutRef(const Eigen::Vector3f& p) {
+    const float x = p.x() - ref.x(), y = p.y() - ref.y(), z = p.z() - ref.z();
+    ++n;
+    sx += x;
+    sy += y;
+    sz += z;
+    sxx += x * x;
+    sxy += x * y;
+    sxz += x * z;
+    syy += y * y;
+    syz += y * z;
+    szz += z * z;
+  }
+
+  // These moments without `part`'s, taken about the same reference.
+  LocalMoments Minus(const LocalMoments& part) const {
+    LocalMoments m = *this;
+    m.n -= part.n;
+    m.sx -= part.sx;
+    m.sy -= part.sy;
+    m.sz -= part.sz;
+    m.sxx -= part.sxx;
+    m.sxy -= part.sxy;
+    m.sxz -= part.sxz;
+    m.syy -= part.syy;
+    m.syz -= part.syz;
+    m.szz -= part.szz;
+    return m;
+  }
+
   // Adds these moments, taken about `origin` instead, to double sums:
   // sum (o + q)(o + q)^T = n o o^T + o s^T + s o^T + S, with o = ref - origin.
   void AddTo(const Eigen::Vector3f& origin, int* count, Eigen::Vector3d* sum,

@@ -29,8 +29,6 @@ struct Options {
   int em_fraction = 60;
   int em_iterations = 8;           // E/M iterations per round (fewer once converged)
   int max_rounds = 6;              // rounds of EM + add/merge/prune
-  // The previous frame's planes seed EM with at least this sigma (metres): the sensor moved.
-  float seed_sigma = 0.0f;
   int max_planes = 24;             // mixture components at most
   float converged_angle = 1e-4f;   // radians: a plane moving less has converged
   float converged_offset = 1e-4f;  // metres
@@ -61,6 +59,11 @@ struct Options {
   float reach_spacings = 1.5f;
   float max_reach = 1.5f;  // ... but never beyond this, metres
   int max_cells = 250000;        // the grid coarsens beyond this many cells per plane
+  // Pieces are fitted to one in s of their points, s chosen so at most this many points of a
+  // cloud enter the fits (a 640x480 cloud: one in 4; errors grow as 1 / sqrt(points), and
+  // 75,000 points leave them far below the systematic ones). Support counts, connectivity and
+  // extents use every point.
+  int fit_points_max = 80000;
   float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
 
   bool keep_labels = false;  // fill Result::labels (pictures, tests)
