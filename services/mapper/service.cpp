@@ -41,11 +41,16 @@ void MapperService::OnPlanes(const plane_set_t& msg) {
   if (mapper_.TakeMapChanged()) map_pending_ = true;
   last_utime_ = msg.utime;
   last_seq_ = msg.seq;
-  if (map_pending_ && (last_map_utime_ < 0 || msg.utime - last_map_utime_ >= kMapPeriodUs)) {
-    PublishMap();
-  }
+  if (map_pending_ && MapDue(msg.utime)) PublishMap();
   stats_.SetDetail(fmt::format("planes {} groups {}", mapper_.State().global.size(),
                                mapper_.State().groups.size()));
+}
+
+bool MapperService::MapDue(int64_t utime) const {
+  if (last_map_utime_ < 0 || utime < last_map_utime_) return true;  // first, or time restarted
+  // Unsigned: hostile time stamps must not overflow the difference.
+  return static_cast<uint64_t>(utime) - static_cast<uint64_t>(last_map_utime_) >=
+         static_cast<uint64_t>(kMapPeriodUs);
 }
 
 void MapperService::PublishMap() {

@@ -31,6 +31,8 @@ class MapperService {
 
  private:
   void Journal(int64_t seq, std::vector<PlaneInput> planes);
+  // MAP at most every kMapPeriodUs of simulated time, and at once when time went backwards.
+  bool MapDue(int64_t utime) const;
 
   bus::Bus& bus_;
   ServiceStats stats_;
