@@ -173,19 +173,30 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
   const int32_t num_cells = static_cast<int32_t>(cells.size());
   w->parent.resize(num_cells);
   for (int32_t c = 0; c < num_cells; ++c) w->parent[c] = c;
+  std::vector<int>& reach = w->reach;
+  reach.assign(num_cells, 0);
   for (int32_t c = 0; c < num_cells; ++c) {
-    const Cell& cell = cells[c];
     if (w->moments[c].solid == 0) continue;
+    const Cell& cell = cells[c];
+    reach[c] = Reach(w->moments[c], w->grids[cell.plane], planes[cell.plane], options,
+                     angular_step);
+  }
+  // Two cells connect when each lies within the other's reach; the earlier of the two in the
+  // grid's row order finds the later one in the half of its neighbourhood that follows it.
+  for (int32_t c = 0; c < num_cells; ++c) {
+    if (reach[c] == 0) continue;
+    const Cell& cell = cells[c];
     const PlaneGrid& g = w->grids[cell.plane];
-    const int reach = Reach(w->moments[c], g, planes[cell.plane], options, angular_step);
-    const int y0 = std::max(0, cell.iy - reach), y1 = std::min(g.h - 1, cell.iy + reach);
-    const int x0 = std::max(0, cell.ix - reach), x1 = std::min(g.w - 1, cell.ix + reach);
-    for (int yy = y0; yy <= y1; ++yy) {
+    const int r = reach[c];
+    const int y1 = std::min(g.h - 1, cell.iy + r);
+    const int x0 = std::max(0, cell.ix - r), x1 = std::min(g.w - 1, cell.ix + r);
+    for (int yy = cell.iy; yy <= y1; ++yy) {
       const int32_t* row = &w->slot_of[g.base + static_cast<size_t>(yy) * g.w];
-      for (int xx = x0; xx <= x1; ++xx) {
+      for (int xx = yy == cell.iy ? cell.ix + 1 : x0; xx <= x1; ++xx) {
         const int32_t other = row[xx];
-        if (other < 0 || other == c || w->moments[other].solid == 0) continue;
-        Union(&w->parent, c, other);
+        if (other < 0 || reach[other] == 0) continue;
+        const int dist = std::max(yy - cell.iy, std::abs(xx - cell.ix));
+        if (dist <= reach[other]) Union(&w->parent, c, other);
       }
     }
   }

@@ -65,6 +65,7 @@ struct PieceWorkspace::Buffers {
   std::vector<PlaneGrid> grids;         // per EM plane
   std::vector<int32_t> piece_of;        // per cell: its piece, -1 for none
   std::vector<int32_t> parent, root_piece;  // union-find over cells
+  std::vector<int> reach;                   // per cell, in cells; 0 for cells in no piece
 };
 
 // In-plane axes: for a vertical plane u is horizontal and v points up, so the extent rectangle
@@ -82,7 +83,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
                const std::vector<uint8_t>& ambiguous, const std::vector<EmPlane>& planes,
                const Options& options, PieceWorkspace::Buffers* w);
 
-// Connected components of the solid cells of each grid: two cells connect when either lies
+// Connected components of the solid cells of each grid: two cells connect when each lies
 // within the other's reach (cell_reach, or more where samples are further apart, see
 // DescribePieces). Cells holding only points on the strip where two planes meet belong to no
 // piece: along a floor, that strip would otherwise bridge the door between two walls. Fills
