@@ -146,9 +146,11 @@ Sensor GrazingSensor(double sigma) {
 }
 
 TEST(Segmenter, SideWallSeenAtAGrazingAngleIsOnePlaneOutToTheFarEnd) {
-  for (double sigma : {0.0, 0.01}) {
-    SCOPED_TRACE("sigma " + std::to_string(sigma));
-    const Sensor sensor = GrazingSensor(sigma);
+  for (const auto& [sigma, width] : {std::pair{0.0, 160}, {0.01, 160}, {0.01, 640}}) {
+    SCOPED_TRACE("sigma " + std::to_string(sigma) + " width " + std::to_string(width));
+    Sensor sensor = GrazingSensor(sigma);
+    sensor.width = width;
+    sensor.height = width * 3 / 4;
     const Scan scan = Render(LongHallway(0.0), sensor);
     float far_x = 0.0f;  // the furthest point of the left wall in view
     for (size_t i = 0; i < scan.cloud.size(); ++i) {

@@ -135,7 +135,7 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
       if (piece >= 0 && (*pieces)[piece].kept) (*piece_labels)[i] = piece;  // made global later
     }
     const uint8_t mode = w->mode[cell];
-    if (mode == 0) continue;
+    if (mode == 0 || (mode == kTrimPoints && phase != 0)) continue;
     Piece& p = (*pieces)[w->piece_of[cell]];
     CellFinish& c = w->finish[cell];
     const Eigen::Vector3f point(x[i], y[i], z[i]);
@@ -222,7 +222,7 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
     if (w.piece_of[s] < 0) continue;
     Piece& p = pieces[w.piece_of[s]];
     p.plane = w.cells[s].plane;
-    p.support += w.cells[s].count;
+    p.support += w.counts[s].count;
     p.stride = static_cast<double>(FitStride(cloud.size(), options));
     w.moments[s].all.AddTo(w.grids[p.plane].origin, &p.count, &p.sum, &p.sum_sq);
   }

@@ -26,13 +26,13 @@ void Union(std::vector<int32_t>* parent, int32_t a, int32_t b) {
 }
 
 // Reach of a cell in cells: cell_reach, or reach_spacings expected sample spacings at the
-// cell's range on its plane, at most max_reach.
-int Reach(const CellMoments& c, const PlaneGrid& g, const EmPlane& plane, const Options& options,
+// range of the cell's centre on its plane, at most max_reach.
+int Reach(const Cell& c, const PlaneGrid& g, const EmPlane& plane, const Options& options,
           float angular_step) {
   const int base = std::max(1, options.cell_reach);
-  if (angular_step <= 0.0f || options.reach_spacings <= 0.0f || c.all.n == 0) return base;
-  const float inv = 1.0f / static_cast<float>(c.all.n);
-  const Eigen::Vector3f centre = c.all.ref + Eigen::Vector3f(c.all.sx, c.all.sy, c.all.sz) * inv;
+  if (angular_step <= 0.0f || options.reach_spacings <= 0.0f) return base;
+  const Eigen::Vector3f centre = g.origin + (g.a_lo + (c.ix + 0.5f) * g.cell) * g.u +
+                                 (g.b_lo + (c.iy + 0.5f) * g.cell) * g.v;
   const float spacing = SampleSpacing(angular_step, centre.norm(), plane.d);
   const float reach = std::min(options.max_reach, options.reach_spacings * spacing);
   return std::max(base, static_cast<int>(std::ceil(reach / g.cell)));
@@ -136,6 +136,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   }
   w->slot_of.assign(slots, -1);
   w->cells.clear();
+  w->counts.clear();
   w->moments.clear();
   w->cell_of_point.assign(n, -1);
   // Second pass in cloud order: the cells and their moments.
@@ -151,14 +152,16 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     int32_t& slot = w->slot_of[g.base + static_cast<size_t>(iy) * g.w + ix];
     if (slot < 0) {
       slot = static_cast<int32_t>(w->cells.size());
-      w->cells.push_back(Cell{l, ix, iy, 0});
+      w->cells.push_back(Cell{l, ix, iy});
+      w->counts.emplace_back();
       w->moments.emplace_back();
     }
     w->cell_of_point[i] = slot;
-    ++w->cells[slot].count;
-    CellMoments& c = w->moments[slot];
-    c.solid += ambiguous.empty() || !ambiguous[i];
+    CellCount& count = w->counts[slot];
+    ++count.count;
+    count.solid += ambiguous.empty() || !ambiguous[i];
     if (phase != 0) continue;
+    CellMoments& c = w->moments[slot];
     const Eigen::Vector3f p(x[i], y[i], z[i]);
     const float e = g.n.dot(p - g.origin);
     c.e_lo = std::min(c.e_lo, e);
@@ -176,10 +179,9 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
   std::vector<int>& reach = w->reach;
   reach.assign(num_cells, 0);
   for (int32_t c = 0; c < num_cells; ++c) {
-    if (w->moments[c].solid == 0) continue;
+    if (w->counts[c].solid == 0) continue;
     const Cell& cell = cells[c];
-    reach[c] = Reach(w->moments[c], w->grids[cell.plane], planes[cell.plane], options,
-                     angular_step);
+    reach[c] = Reach(cell, w->grids[cell.plane], planes[cell.plane], options, angular_step);
   }
   // Two cells connect when each lies within the other's reach; the earlier of the two in the
   // grid's row order finds the later one in the half of its neighbourhood that follows it.
@@ -204,7 +206,7 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
   w->root_piece.assign(num_cells, -1);
   int pieces = 0;
   for (int32_t c = 0; c < num_cells; ++c) {
-    if (w->moments[c].solid == 0) continue;
+    if (w->counts[c].solid == 0) continue;
     int32_t& piece = w->root_piece[Find(&w->parent, c)];
     if (piece < 0) piece = pieces++;
     w->piece_of[c] = piece;

@@ -17,20 +17,24 @@ namespace relplane::segmenter {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// Per occupied cell, what binning touches, in one cache line: the moments of its points that
-// enter the fits (one in FitStride), how many of its points are solid (not on the strip where
-// two planes meet), and the range of their distances to the EM plane.
+// Per occupied cell, what binning touches for every point, in a small array: how many points
+// it holds and how many of them are solid (not on the strip where two planes meet).
+struct CellCount {
+  int32_t count = 0;
+  int32_t solid = 0;
+};
+
+// Per occupied cell, in one cache line, what binning touches for the points that enter the fits
+// (one in FitStride): their moments and the range of their distances to the EM plane.
 struct alignas(64) CellMoments {
   LocalMoments all;
-  int solid = 0;
   float e_lo = kInf, e_hi = -kInf;
 };
 
-// Per occupied cell: where it is and how many points it holds.
+// Per occupied cell: where it is.
 struct Cell {
   int32_t plane = 0;
   int ix = 0, iy = 0;
-  int count = 0;
 };
 
 // Per occupied cell, second pass: the moments of its points beyond the trim of the piece's first
@@ -59,6 +63,7 @@ struct PieceWorkspace::Buffers {
   std::vector<int32_t> cell_of_point;   // per point: its cell, -1 for none
   std::vector<int32_t> slot_of;         // per grid slot (all grids): its cell, -1 if empty
   std::vector<Cell> cells;              // in order of first appearance
+  std::vector<CellCount> counts;        // per cell
   std::vector<CellMoments> moments;     // per cell
   std::vector<CellFinish> finish;       // per cell
   std::vector<uint8_t> mode;            // per cell: what the second pass does with its points
