@@ -131,6 +131,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
       }
       g.cell *= 2.0f;
     }
+    g.inv_cell = 1.0f / g.cell;
     g.base = slots;
     slots += static_cast<size_t>(g.w) * g.h;
   }
@@ -146,7 +147,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     if (l < 0) continue;
     const PlaneGrid& g = w->grids[l];
     if (!g.used) continue;
-    const float inv_cell = 1.0f / g.cell;
+    const float inv_cell = g.inv_cell;
     const int ix = std::min(g.w - 1, static_cast<int>((w->a[i] - g.a_lo) * inv_cell));
     const int iy = std::min(g.h - 1, static_cast<int>((w->b[i] - g.b_lo) * inv_cell));
     int32_t& slot = w->slot_of[g.base + static_cast<size_t>(iy) * g.w + ix];

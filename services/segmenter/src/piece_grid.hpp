@@ -54,6 +54,7 @@ struct PlaneGrid {
                   v = Eigen::Vector3f::UnitY();
   float a_lo = kInf, a_hi = -kInf, b_lo = kInf, b_hi = -kInf;
   float cell = 0.1f;
+  float inv_cell = 10.0f;
   int w = 0, h = 0;
   size_t base = 0;  // offset of its slots in Buffers::slot_of
 };
