@@ -110,8 +110,9 @@ StatusSnapshot ServiceStats::Snapshot() {
   const size_t over = std::count_if(window_ms_.begin(), window_ms_.end(),
                                     [this](double ms) { return ms > budget_ms_; });
   if (over > 0) {
-    spdlog::warn("{} of {} iterations in the last period exceeded the {:.1f} ms budget (max {:.2f} ms)",
-                 over, window_ms_.size(), budget_ms_, s.max_ms);
+    spdlog::warn(
+        "{} of {} iterations in the last period exceeded the {:.1f} ms budget (max {:.2f} ms)",
+        over, window_ms_.size(), budget_ms_, s.max_ms);
   }
   window_ms_.clear();
   return s;

@@ -12,8 +12,8 @@
 namespace relplane::mapper {
 namespace {
 
-constexpr size_t kHeaderBytes = 8;                // length + CRC
-constexpr uint32_t kMaxPayload = 64u << 20;       // far above any real plane set
+constexpr size_t kHeaderBytes = 8;           // length + CRC
+constexpr uint32_t kMaxPayload = 64u << 20;  // far above any real plane set
 constexpr uint32_t kMaxPlanes = 1u << 16;
 constexpr uint32_t kMaxVertices = 1u << 16;
 

@@ -4,7 +4,6 @@
 // crash. With a checkpoint journal it resumes where a killed mapper stopped (journal.hpp).
 
 #include <relplane/plane_set_t.hpp>
-
 #include <string>
 #include <vector>
 

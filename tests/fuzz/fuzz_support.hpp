@@ -53,11 +53,16 @@ std::vector<uint8_t> Encode(const M& msg) {
 // Mostly a number in [-range, range]; now and then NaN, an infinity, a huge or a tiny one.
 inline double Number(FuzzedDataProvider& in, double range) {
   switch (in.ConsumeIntegralInRange<int>(0, 15)) {
-    case 0: return std::numeric_limits<double>::quiet_NaN();
-    case 1: return std::numeric_limits<double>::infinity() * (in.ConsumeBool() ? 1 : -1);
-    case 2: return in.ConsumeFloatingPoint<double>();
-    case 3: return 0.0;
-    default: return in.ConsumeFloatingPointInRange<double>(-range, range);
+    case 0:
+      return std::numeric_limits<double>::quiet_NaN();
+    case 1:
+      return std::numeric_limits<double>::infinity() * (in.ConsumeBool() ? 1 : -1);
+    case 2:
+      return in.ConsumeFloatingPoint<double>();
+    case 3:
+      return 0.0;
+    default:
+      return in.ConsumeFloatingPointInRange<double>(-range, range);
   }
 }
 

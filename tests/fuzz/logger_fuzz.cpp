@@ -90,8 +90,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   eval::MapSnapshot map, world;
   std::vector<eval::PoseSample> truth, estimate;
   int64_t now_us = 0;
-  static const char* const kChannels[] = {"POSE", "SIM_TRUTH", "MAP", "SIM_WORLD", "STATUS",
-                                          "PLANES"};
+  static const char* const kChannels[] = {"POSE",      "SIM_TRUTH", "MAP",
+                                          "SIM_WORLD", "STATUS",    "PLANES"};
   for (int i = 0; i < 96 && in.remaining_bytes() > 0; ++i) {
     const std::string channel = kChannels[in.ConsumeIntegralInRange<int>(0, 5)];
     now_us += in.ConsumeIntegralInRange<int64_t>(0, 100000);

@@ -5,10 +5,9 @@
 // fingerprint; a few frames per input, since the segmenter seeds each frame from the last.
 // Every PLANES message published must decode and be finite.
 
+#include <Eigen/Geometry>
 #include <relplane/plane_set_t.hpp>
 #include <relplane/point_cloud_t.hpp>
-
-#include <Eigen/Geometry>
 
 #include "fuzz_support.hpp"
 #include "service.hpp"

@@ -5,11 +5,11 @@
 //   later real frame is still processed (one message must not make them all look old).
 
 #include <gtest/gtest.h>
-#include <relplane/plane_set_t.hpp>
-#include <relplane/point_cloud_t.hpp>
 
 #include <chrono>
 #include <regex>
+#include <relplane/plane_set_t.hpp>
+#include <relplane/point_cloud_t.hpp>
 #include <thread>
 
 #include "launch_harness.hpp"
@@ -30,18 +30,16 @@ long Number(const std::string& text, const std::string& pattern) {
 TEST(FrameLoss, MapperKeepsTrackingAtTwentyPercentLoss) {
   TempDir dir;
   std::string output;
-  ASSERT_EQ(RunLauncher({Scenario(), "--out", dir.Path() + "/run", "--lcm-url",
-                         TestBusUrl(47152), "--set", "sim.drop_fraction=0.2"},
+  ASSERT_EQ(RunLauncher({Scenario(), "--out", dir.Path() + "/run", "--lcm-url", TestBusUrl(47152),
+                         "--set", "sim.drop_fraction=0.2"},
                         120, &output),
             0)
       << output;
   const std::string metrics = ReadText(dir.Path() + "/run/metrics.json");
   const long truth = Number(metrics, "\"truth_poses\": ");
   const long poses = Number(metrics, "\"iterations\": ");
-  const long sim_dropped =
-      Number(metrics, "\"relplane-sim\": \\{[^}]*\"frames_dropped\": ");
-  const long mapper_dropped =
-      Number(metrics, "\"relplane-mapper\": \\{[^}]*\"frames_dropped\": ");
+  const long sim_dropped = Number(metrics, "\"relplane-sim\": \\{[^}]*\"frames_dropped\": ");
+  const long mapper_dropped = Number(metrics, "\"relplane-mapper\": \\{[^}]*\"frames_dropped\": ");
   EXPECT_EQ(truth, 151) << metrics;  // SIM_TRUTH for every frame, dropped or not
   EXPECT_GT(sim_dropped, 151 * 0.1) << metrics;
   EXPECT_LT(sim_dropped, 151 * 0.3) << metrics;

@@ -17,16 +17,16 @@ namespace {
 // sim: runs until DIR/finish exists, then ends the run normally. mapper: appends its pid and
 // its arguments to DIR/mapper.starts (one line per start), then sleeps.
 void WriteServices(const std::string& dir) {
-  WriteFakeService(dir, "sim",
-                   "while [ ! -f " + dir + "/finish ]; do sleep 0.05; done\nexit 0");
+  WriteFakeService(dir, "sim", "while [ ! -f " + dir + "/finish ]; do sleep 0.05; done\nexit 0");
   WriteFakeService(dir, "mapper", "echo \"$$ $*\" >> " + dir + "/mapper.starts\nexec sleep 60");
 }
 
 std::string WriteScenario(const std::string& dir, int max_restarts) {
   const std::string path = dir + "/scenario.yaml";
-  WriteText(path, "name: restart\nlaunch:\n  services: [sim, mapper]\n  grace_s: 0.5\n"
-                  "  drain_s: 0.1\n  restart: {max_restarts: " +
-                      std::to_string(max_restarts) + ", services: [mapper]}\n");
+  WriteText(path,
+            "name: restart\nlaunch:\n  services: [sim, mapper]\n  grace_s: 0.5\n"
+            "  drain_s: 0.1\n  restart: {max_restarts: " +
+                std::to_string(max_restarts) + ", services: [mapper]}\n");
   return path;
 }
 
@@ -40,9 +40,9 @@ std::vector<std::string> Lines(const std::string& text) {
 // Waits until DIR/mapper.starts has `n` lines; returns the pid on the last one (-1: time-out).
 pid_t WaitForStart(const std::string& dir, size_t n, double timeout_s) {
   for (int i = 0; i < static_cast<int>(timeout_s * 20); ++i) {
-    const std::vector<std::string> lines =
-        Exists(dir + "/mapper.starts") ? Lines(ReadText(dir + "/mapper.starts"))
-                                       : std::vector<std::string>{};
+    const std::vector<std::string> lines = Exists(dir + "/mapper.starts")
+                                               ? Lines(ReadText(dir + "/mapper.starts"))
+                                               : std::vector<std::string>{};
     if (lines.size() >= n) return static_cast<pid_t>(std::stol(lines[n - 1]));
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }

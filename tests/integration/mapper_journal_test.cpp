@@ -34,8 +34,8 @@ JournalRecord Frame(int64_t k) {
   const double x = 0.03 * static_cast<double>(k);  // metres travelled
   JournalRecord r;
   r.iteration = k;
-  r.planes.push_back(Wall({0, -1, 0}, 1.0, {0.5, 1, 0}, {6.0 - x, 1, 0}));     // left wall
-  r.planes.push_back(Wall({0, 1, 0}, 1.0, {0.5, -1, 0}, {6.0 - x, -1, 0}));    // right wall
+  r.planes.push_back(Wall({0, -1, 0}, 1.0, {0.5, 1, 0}, {6.0 - x, 1, 0}));           // left wall
+  r.planes.push_back(Wall({0, 1, 0}, 1.0, {0.5, -1, 0}, {6.0 - x, -1, 0}));          // right wall
   r.planes.push_back(Wall({-1, 0, 0}, 6.5 - x, {6.5 - x, 1, 0}, {6.5 - x, -1, 0}));  // end
   return r;
 }

@@ -17,9 +17,9 @@
 namespace relplane::testing {
 namespace {
 
-const std::vector<std::string> kArgs = {
-    SourceDir() + "/scenarios/straight_hallway.yaml", "--set", "sim.sensor.noise_sigma=0.01",
-    "--set", "launch.restart={max_restarts: 1, services: [mapper]}"};
+const std::vector<std::string> kArgs = {SourceDir() + "/scenarios/straight_hallway.yaml", "--set",
+                                        "sim.sensor.noise_sigma=0.01", "--set",
+                                        "launch.restart={max_restarts: 1, services: [mapper]}"};
 
 double Ate(const std::string& metrics) {
   std::smatch match;

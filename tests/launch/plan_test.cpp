@@ -43,10 +43,9 @@ TEST(ServiceCommandTest, ConfigUrlAndPerServiceFlags) {
   LaunchOptions options;
   const ChildSpec mapper =
       ServiceCommand("mapper", "/b", "/r/scenario.yaml", "udpm://x:1", "/r", options);
-  EXPECT_EQ(mapper.argv,
-            (std::vector<std::string>{"/b/relplane-mapper", "--config", "/r/scenario.yaml",
-                                      "--lcm-url", "udpm://x:1", "--checkpoint",
-                                      "/r/mapper.journal"}));
+  EXPECT_EQ(mapper.argv, (std::vector<std::string>{"/b/relplane-mapper", "--config",
+                                                   "/r/scenario.yaml", "--lcm-url", "udpm://x:1",
+                                                   "--checkpoint", "/r/mapper.journal"}));
   const ChildSpec logger = ServiceCommand("logger", "/b", "/r/s.yaml", "u", "/r", options);
   EXPECT_EQ(logger.argv.back(), "/r");
   EXPECT_EQ(logger.argv[logger.argv.size() - 2], "--out");

@@ -29,8 +29,9 @@ struct ChildSpec {
 };
 
 // The command line of service `name`: relplane-NAME --config SCENARIO --lcm-url URL, plus
-// --out RUN for the logger, --checkpoint RUN/mapper.journal for the mapper and --rate for the simulator when the scenario sets launch.rate_hz.
-// `iterations` >= 0 is passed to the simulator as --iterations.
+// --out RUN for the logger, --checkpoint RUN/mapper.journal for the mapper and --rate for the
+// simulator when the scenario sets launch.rate_hz. `iterations` >= 0 is passed to the simulator as
+// --iterations.
 ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
                          const std::string& scenario_file, const std::string& url,
                          const std::string& run_dir, const LaunchOptions& options,

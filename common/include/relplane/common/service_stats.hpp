@@ -66,8 +66,8 @@ class ServiceStats {
   int64_t dropped_ = 0;
   int64_t rejected_ = 0;
   int64_t last_seq_ = -1;
-  int64_t suspect_seq_ = -1;   // a far-ahead seq waiting for confirmation, or -1
-  int64_t older_seq_ = -1;     // the last of the current run of older seqs, or -1
+  int64_t suspect_seq_ = -1;  // a far-ahead seq waiting for confirmation, or -1
+  int64_t older_seq_ = -1;    // the last of the current run of older seqs, or -1
   int older_in_a_row_ = 0;
   int64_t resyncs_ = 0;
   std::string detail_;
