@@ -178,8 +178,8 @@ TEST(Segmenter, DoorGapStillSplitsAWallSeenAtAGrazingAngle) {
   const Sensor sensor = GrazingSensor(0.01);
   const Scan scan = Render(LongHallway(4.5), sensor);
   Segmenter segmenter;
-  const auto left = PlanesFacing(segmenter.Segment(scan.cloud).planes, -Eigen::Vector3f::UnitY(),
-                                 1.0f);
+  const auto left =
+      PlanesFacing(segmenter.Segment(scan.cloud).planes, -Eigen::Vector3f::UnitY(), 1.0f);
   ASSERT_EQ(left.size(), 2u);
   float before_end = -1e9f, after_start = 1e9f;
   for (const auto& p : left) {

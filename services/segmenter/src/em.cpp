@@ -77,8 +77,7 @@ float Dot(const float* __restrict a, const float* __restrict b, int n) {
   for (float v : lane) s += v;
   return s;
 }
-float Dot3(const float* __restrict a, const float* __restrict b, const float* __restrict c,
-           int n) {
+float Dot3(const float* __restrict a, const float* __restrict b, const float* __restrict c, int n) {
   float lane[kLanes] = {};
   for (int i = 0; i < n; i += kLanes) {
     for (int l = 0; l < kLanes; ++l) lane[l] += a[i + l] * b[i + l] * c[i + l];

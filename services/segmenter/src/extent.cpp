@@ -15,7 +15,7 @@ namespace {
 constexpr float kTrimSigmas = 2.5f;
 
 struct Piece {
-  int plane = 0;  // the EM plane it came from
+  int plane = 0;    // the EM plane it came from
   int support = 0;  // all its points
   int count = 0;    // the points that enter the fit (sum, sum_sq): one in `stride`
   double stride = 1.0;
@@ -118,8 +118,9 @@ void PlanSecondPass(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces) {
 
 // Second pass over the points, in cloud order, of the cells that need it: the moments of the
 // points beyond the trim of the first fit, taken out of the cell's so the final fit ignores
-// what the piece caught from a neighbouring surface; extents along each piece's own refitted axes. An interior cell cannot
-// hold an extreme point (to within a cell's rotation between the EM and the piece's axes).
+// what the piece caught from a neighbouring surface; extents along each piece's own refitted axes.
+// An interior cell cannot hold an extreme point (to within a cell's rotation between the EM and the
+// piece's axes).
 void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
                    std::vector<Piece>* pieces, std::vector<int32_t>* piece_labels) {
   const float* x = cloud.x.data();

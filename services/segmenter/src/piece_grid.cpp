@@ -31,8 +31,8 @@ int Reach(const Cell& c, const PlaneGrid& g, const EmPlane& plane, const Options
           float angular_step) {
   const int base = std::max(1, options.cell_reach);
   if (angular_step <= 0.0f || options.reach_spacings <= 0.0f) return base;
-  const Eigen::Vector3f centre = g.origin + (g.a_lo + (c.ix + 0.5f) * g.cell) * g.u +
-                                 (g.b_lo + (c.iy + 0.5f) * g.cell) * g.v;
+  const Eigen::Vector3f centre =
+      g.origin + (g.a_lo + (c.ix + 0.5f) * g.cell) * g.u + (g.b_lo + (c.iy + 0.5f) * g.cell) * g.v;
   const float spacing = SampleSpacing(angular_step, centre.norm(), plane.d);
   const float reach = std::min(options.max_reach, options.reach_spacings * spacing);
   return std::max(base, static_cast<int>(std::ceil(reach / g.cell)));

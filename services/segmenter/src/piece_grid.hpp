@@ -50,8 +50,7 @@ struct PlaneGrid {
   bool used = false;  // enough points to make a piece
   int points = 0;
   Eigen::Vector3f origin = Eigen::Vector3f::Zero(), n = Eigen::Vector3f::UnitZ(),
-                  u = Eigen::Vector3f::UnitX(),
-                  v = Eigen::Vector3f::UnitY();
+                  u = Eigen::Vector3f::UnitX(), v = Eigen::Vector3f::UnitY();
   float a_lo = kInf, a_hi = -kInf, b_lo = kInf, b_hi = -kInf;
   float cell = 0.1f;
   float inv_cell = 10.0f;
@@ -60,16 +59,16 @@ struct PlaneGrid {
 };
 
 struct PieceWorkspace::Buffers {
-  std::vector<float> a, b;              // per point: coordinates in its plane's grid
-  std::vector<int32_t> cell_of_point;   // per point: its cell, -1 for none
-  std::vector<int32_t> slot_of;         // per grid slot (all grids): its cell, -1 if empty
-  std::vector<Cell> cells;              // in order of first appearance
-  std::vector<CellCount> counts;        // per cell
-  std::vector<CellMoments> moments;     // per cell
-  std::vector<CellFinish> finish;       // per cell
-  std::vector<uint8_t> mode;            // per cell: what the second pass does with its points
-  std::vector<PlaneGrid> grids;         // per EM plane
-  std::vector<int32_t> piece_of;        // per cell: its piece, -1 for none
+  std::vector<float> a, b;                  // per point: coordinates in its plane's grid
+  std::vector<int32_t> cell_of_point;       // per point: its cell, -1 for none
+  std::vector<int32_t> slot_of;             // per grid slot (all grids): its cell, -1 if empty
+  std::vector<Cell> cells;                  // in order of first appearance
+  std::vector<CellCount> counts;            // per cell
+  std::vector<CellMoments> moments;         // per cell
+  std::vector<CellFinish> finish;           // per cell
+  std::vector<uint8_t> mode;                // per cell: what the second pass does with its points
+  std::vector<PlaneGrid> grids;             // per EM plane
+  std::vector<int32_t> piece_of;            // per cell: its piece, -1 for none
   std::vector<int32_t> parent, root_piece;  // union-find over cells
   std::vector<int> reach;                   // per cell, in cells; 0 for cells in no piece
 };

@@ -163,8 +163,8 @@ Result Segmenter::Segment(const Cloud& input) {
     return result;
   }
   std::vector<int32_t> pieces;
-  result.planes = DescribePieces(cloud, labels_, ambiguous_, planes, options_,
-                                 result.angular_step, &pieces, &workspace_);
+  result.planes = DescribePieces(cloud, labels_, ambiguous_, planes, options_, result.angular_step,
+                                 &pieces, &workspace_);
   // Back to the input's indexing: the non-finite points were left out of `cloud`.
   result.labels.assign(input.size(), -1);
   for (size_t i = 0, k = 0; i < input.size(); ++i) {

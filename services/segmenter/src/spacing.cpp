@@ -19,8 +19,8 @@ float EstimateAngularStep(const Cloud& sample, size_t cloud_size) {
   if (n < static_cast<size_t>(4 * kMinCount) || cloud_size < n) return 0.0f;
   std::vector<float> ux(n), uy(n), uz(n);
   for (size_t i = 0; i < n; ++i) {
-    const float r2 = sample.x[i] * sample.x[i] + sample.y[i] * sample.y[i] +
-                     sample.z[i] * sample.z[i];
+    const float r2 =
+        sample.x[i] * sample.x[i] + sample.y[i] * sample.y[i] + sample.z[i] * sample.z[i];
     const float inv = r2 > 0.0f ? 1.0f / std::sqrt(r2) : 0.0f;  // 0: matches no probe
     ux[i] = sample.x[i] * inv;
     uy[i] = sample.y[i] * inv;

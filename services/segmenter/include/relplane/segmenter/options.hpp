@@ -50,15 +50,15 @@ struct Options {
   int min_em_points = 12;  // EM support (sum of responsibilities) below this is pruned
 
   // --- Assignment of all points and extent ---
-  float inlier_sigmas = 3.0f;    // a point supports its nearest plane within this many sigma
-  int min_points = 150;          // pieces with fewer supporting points are dropped
-  float cell_size = 0.1f;        // metres, occupancy grid in the plane for connected pieces
-  int cell_reach = 2;            // cells: occupied cells this close are connected, at least
+  float inlier_sigmas = 3.0f;  // a point supports its nearest plane within this many sigma
+  int min_points = 150;        // pieces with fewer supporting points are dropped
+  float cell_size = 0.1f;      // metres, occupancy grid in the plane for connected pieces
+  int cell_reach = 2;          // cells: occupied cells this close are connected, at least
   // Further where the samples land further apart (far away, grazing incidence): cells connect
   // within this many expected sample spacings (learnt from the cloud; 0: cell_reach only) ...
   float reach_spacings = 1.5f;
   float max_reach = 1.5f;  // ... but never beyond this, metres
-  int max_cells = 250000;        // the grid coarsens beyond this many cells per plane
+  int max_cells = 250000;  // the grid coarsens beyond this many cells per plane
   // Pieces are fitted to one in s of their points, s chosen so at most this many points of a
   // cloud enter the fits (a 640x480 cloud: one in 4; errors grow as 1 / sqrt(points), and
   // 75,000 points leave them far below the systematic ones). Support counts, connectivity and
