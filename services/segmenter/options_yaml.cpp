@@ -54,6 +54,7 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   ReadPositive(r, "max_reach", &o.max_reach);
   ReadPositive(r, "max_cells", &o.max_cells);
   ReadPositive(r, "fit_points_max", &o.fit_points_max);
+  ReadNonNegative(r, "describe_points_max", &o.describe_points_max);
   ReadPositive(r, "vertical_max_nz", &o.vertical_max_nz);
   r.Read("seed", &o.seed);
   long max_points = static_cast<long>(s.max_points);

@@ -150,16 +150,31 @@ Result Segmenter::Segment(const Cloud& input) {
   previous_ = planes;
   result.em_planes = static_cast<int>(planes.size());
 
-  // One hard assignment pass over every point, then connected pieces and their extents.
-  // The sensor's angular step, learnt from the sample, sets how far apart samples land on each
-  // plane: far, grazing parts of a wall stay connected.
-  result.angular_step = EstimateAngularStep(sample, cloud.size());
-  AssignPoints(cloud, planes, options_, &labels_, &ambiguous_);
-  result.assigned_points =
+  // One hard assignment pass, then connected pieces and their extents, over every point or, for
+  // a large cloud, over a stratified subsample of describe_points_max points (support counts
+  // scaled back). The sensor's angular step, learnt from the EM sample, sets how far apart the
+  // described points land on each plane: far, grazing parts of a wall stay connected.
+  const bool subsample = !options_.keep_labels && options_.describe_points_max > 0 &&
+                         cloud.size() > static_cast<size_t>(options_.describe_points_max);
+  if (subsample) Subsample(cloud, options_.describe_points_max, options_.seed + 1, &described_);
+  const Cloud& described = subsample ? described_ : cloud;
+  const double scale = static_cast<double>(cloud.size()) / static_cast<double>(described.size());
+  Options describe = options_;
+  describe.min_points =
+      std::max(1, static_cast<int>(std::ceil(options_.min_points / scale - 1e-9)));
+  result.angular_step = EstimateAngularStep(sample, described.size());
+  AssignPoints(described, planes, options_, &labels_, &ambiguous_);
+  const auto assigned =
       std::count_if(labels_.begin(), labels_.end(), [](int32_t l) { return l >= 0; });
+  result.assigned_points = static_cast<int64_t>(std::llround(assigned * scale));
   if (!options_.keep_labels) {
-    result.planes = DescribePieces(cloud, labels_, ambiguous_, planes, options_,
+    result.planes = DescribePieces(described, labels_, ambiguous_, planes, describe,
                                    result.angular_step, nullptr, &workspace_);
+    if (subsample) {
+      for (DetectedPlane& p : result.planes) {
+        p.num_points = static_cast<decltype(p.num_points)>(std::llround(p.num_points * scale));
+      }
+    }
     return result;
   }
   std::vector<int32_t> pieces;

@@ -64,6 +64,11 @@ struct Options {
   // 75,000 points leave them far below the systematic ones). Support counts, connectivity and
   // extents use every point.
   int fit_points_max = 80000;
+  // Larger clouds are assigned, split into pieces and described from a stratified subsample of
+  // at most this many points (a 640x480 cloud: one in 6); support counts are scaled back to the
+  // whole cloud, extents are within a sample spacing of the whole cloud's. The angular step
+  // that sets the reach is the subsample's own. 0: every point (as with keep_labels).
+  int describe_points_max = 60000;
   float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
 
   bool keep_labels = false;  // fill Result::labels (pictures, tests)

@@ -40,7 +40,7 @@ class Segmenter {
   Options options_;
   std::vector<EmPlane> previous_;
   // Buffers reused from frame to frame (the segmenter is long-lived): no per-cloud allocation.
-  Cloud finite_, sample_;
+  Cloud finite_, sample_, described_;
   std::vector<int32_t> labels_;
   std::vector<uint8_t> ambiguous_;
   PieceWorkspace workspace_;
