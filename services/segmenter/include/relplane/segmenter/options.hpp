@@ -65,10 +65,10 @@ struct Options {
   // extents use every point.
   int fit_points_max = 80000;
   // Larger clouds are assigned, split into pieces and described from a stratified subsample of
-  // at most this many points (a 640x480 cloud: one in 6); support counts are scaled back to the
+  // at most this many points (a 640x480 cloud: one in 8); support counts are scaled back to the
   // whole cloud, extents are within a sample spacing of the whole cloud's. The angular step
   // that sets the reach is the subsample's own. 0: every point (as with keep_labels).
-  int describe_points_max = 60000;
+  int describe_points_max = 40000;
   float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
 
   bool keep_labels = false;  // fill Result::labels (pictures, tests)
