@@ -137,37 +137,91 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   }
   w->slot_of.assign(slots, -1);
   w->cells.clear();
-  w->counts.clear();
-  w->moments.clear();
-  w->cell_of_point.assign(n, -1);
-  // Second pass in cloud order: the cells and their moments.
-  const size_t stride = FitStride(n, options);
-  for (size_t i = 0, phase = 0; i < n; ++i, phase = phase + 1 == stride ? 0 : phase + 1) {
-    const int32_t l = labels[i];
-    if (l < 0) continue;
-    const PlaneGrid& g = w->grids[l];
-    if (!g.used) continue;
-    const float inv_cell = g.inv_cell;
-    const int ix = std::min(g.w - 1, static_cast<int>((w->a[i] - g.a_lo) * inv_cell));
-    const int iy = std::min(g.h - 1, static_cast<int>((w->b[i] - g.b_lo) * inv_cell));
-    int32_t& slot = w->slot_of[g.base + static_cast<size_t>(iy) * g.w + ix];
-    if (slot < 0) {
-      slot = static_cast<int32_t>(w->cells.size());
-      w->cells.push_back(Cell{l, ix, iy});
-      w->counts.emplace_back();
-      w->moments.emplace_back();
+  w->cell_of_point.resize(n);
+  // Second pass, arithmetic only: each point's slot in its plane's grid (-1 for none). The
+  // grids' parameters sit in small flat arrays; nothing is looked up at random.
+  struct Frame {
+    float a_lo, b_lo, inv_cell;
+    int w1, h1, w;
+    int64_t base;  // -1 for an unused grid
+  };
+  std::vector<Frame> frames(k);
+  for (size_t j = 0; j < k; ++j) {
+    const PlaneGrid& g = w->grids[j];
+    frames[j] = Frame{g.a_lo,
+                      g.b_lo,
+                      g.inv_cell,
+                      g.w - 1,
+                      g.h - 1,
+                      g.w,
+                      g.used ? static_cast<int64_t>(g.base) : -1};
+  }
+  int32_t* __restrict cell_of = w->cell_of_point.data();
+  const int32_t* __restrict label = labels.data();
+  const float* __restrict pa = w->a.data();
+  const float* __restrict pb = w->b.data();
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t l = label[i];
+    if (l < 0 || frames[l].base < 0) {
+      cell_of[i] = -1;
+      continue;
     }
-    w->cell_of_point[i] = slot;
-    CellCount& count = w->counts[slot];
-    ++count.count;
-    count.solid += ambiguous.empty() || !ambiguous[i];
+    const Frame& f = frames[l];
+    const int ix = std::min(f.w1, static_cast<int>((pa[i] - f.a_lo) * f.inv_cell));
+    const int iy = std::min(f.h1, static_cast<int>((pb[i] - f.b_lo) * f.inv_cell));
+    cell_of[i] = static_cast<int32_t>(f.base + static_cast<int64_t>(iy) * f.w + ix);
+  }
+  // Third pass: slots become cells, numbered in order of first appearance.
+  int32_t* __restrict slot_of = w->slot_of.data();
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t s = cell_of[i];
+    if (s < 0) continue;
+    int32_t c = slot_of[s];
+    if (c < 0) {
+      const int32_t l = label[i];
+      const int local = static_cast<int>(s - frames[l].base);
+      c = slot_of[s] = static_cast<int32_t>(w->cells.size());
+      w->cells.push_back(Cell{l, local % frames[l].w, local / frames[l].w});
+    }
+    cell_of[i] = c;
+  }
+  // Fourth pass: counts and moments per cell. A run of points in one cell (common in an
+  // organized cloud) accumulates in registers, not through memory.
+  w->counts.assign(w->cells.size(), CellCount{});
+  w->moments.assign(w->cells.size(), CellMoments{});
+  CellCount* counts = w->counts.data();
+  CellMoments* moments = w->moments.data();
+  const bool all_solid = ambiguous.empty();
+  const uint8_t* amb = all_solid ? nullptr : ambiguous.data();
+  const size_t stride = FitStride(n, options);
+  int32_t current = -1;
+  CellCount run_count;
+  CellMoments run;
+  for (size_t i = 0, phase = 0; i < n; ++i, phase = phase + 1 == stride ? 0 : phase + 1) {
+    const int32_t c = cell_of[i];
+    if (c < 0) continue;
+    if (c != current) {
+      if (current >= 0) {
+        counts[current] = run_count;
+        moments[current] = run;
+      }
+      current = c;
+      run_count = counts[c];
+      run = moments[c];
+    }
+    ++run_count.count;
+    run_count.solid += all_solid || !amb[i];
     if (phase != 0) continue;
-    CellMoments& c = w->moments[slot];
+    const PlaneGrid& g = w->grids[label[i]];
     const Eigen::Vector3f p(x[i], y[i], z[i]);
     const float e = g.n.dot(p - g.origin);
-    c.e_lo = std::min(c.e_lo, e);
-    c.e_hi = std::max(c.e_hi, e);
-    c.all.Add(p);
+    run.e_lo = std::min(run.e_lo, e);
+    run.e_hi = std::max(run.e_hi, e);
+    run.all.Add(p);
+  }
+  if (current >= 0) {
+    counts[current] = run_count;
+    moments[current] = run;
   }
 }
 
