@@ -70,7 +70,8 @@ void ExpectTruth(const MapperState& state, double tolerance) {
 
 TEST(PoseGraph, ALoopClosureIsSpreadOverTheGroups) {
   MapperState state = Loop();
-  EXPECT_GT(LoopEvidence(state, 3), 0);
+  EXPECT_EQ(GroupLoopEvidence(state, 4, 3), 0);
+  EXPECT_GT(GroupLoopEvidence(state, 5, 3), 0);
   const PoseGraphResult r = OptimiseGroupPlacements(state, PoseGraphOptions{});
   EXPECT_LT(r.cost_after, r.cost_before);
   ExpectTruth(state, 1e-3);

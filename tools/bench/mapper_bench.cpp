@@ -87,6 +87,8 @@ void BM_IterationWith2000PlaneMap(benchmark::State& state) {
     ++k;
   }
   state.counters["map"] = static_cast<double>(start);
+  state.counters["groups"] = static_cast<double>(mapper->State().groups.size());
+  state.counters["graph_solves"] = static_cast<double>(mapper->State().graph_solves);
 }
 BENCHMARK(BM_IterationWith2000PlaneMap)->Unit(benchmark::kMicrosecond)->Iterations(300)
     ->Repetitions(5)->ReportAggregatesOnly(true);

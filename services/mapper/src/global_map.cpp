@@ -223,10 +223,12 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
     }
     group.placement = Solve(links, prior, options.localisation.prior_weight);
     PlaceMembers(state, g, options);
+    group.loop_evidence = GroupLoopEvidence(state, g, options.grouping.recent_groups);
   }
   // Soft-linked groups: when a loop closes (or a closing tie learns more), the group placements
   // are solved together over the graph of ties and every group re-places its members.
-  const int evidence = LoopEvidence(state, options.grouping.recent_groups);
+  int evidence = 0;
+  for (const Group& group : state.groups) evidence += group.loop_evidence;
   if (options.graph.enabled && evidence > state.loop_evidence) {
     state.loop_evidence = evidence;
     const PoseGraphResult solved = OptimiseGroupPlacements(state, options.graph);

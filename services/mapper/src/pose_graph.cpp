@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -124,21 +125,25 @@ Normal Linearise(const std::vector<Tie>& ties, const std::vector<geometry::Pose2
 
 }  // namespace
 
-int LoopEvidence(const MapperState& state, int min_span) {
+int GroupLoopEvidence(const MapperState& state, size_t g, int min_span) {
   int evidence = 0;
-  for (const auto& [id, plane] : state.planes) {
-    int previous = -1;
-    for (int64_t g : plane.groups) {
-      if (g < 0 || g >= static_cast<int64_t>(state.groups.size())) continue;
-      const auto& members = state.groups[g].relative.members;
-      auto it = members.find(id);
-      if (it == members.end()) continue;
-      if (previous >= 0 && g - previous > min_span) {
-        auto old = state.groups[previous].relative.members.find(id);
-        evidence += 1 + std::min(static_cast<int>(it->second.known),
-                                 static_cast<int>(old->second.known));
+  const auto& members = state.groups[g].relative.members;
+  for (const auto& [id, placed] : members) {
+    auto plane = state.planes.find(id);
+    if (plane == state.planes.end()) continue;
+    // The latest earlier group that places the plane too.
+    const Placement* earlier = nullptr;
+    int64_t earlier_group = -1;
+    for (int64_t h : plane->second.groups) {
+      if (h < 0 || h >= static_cast<int64_t>(g)) continue;
+      auto it = state.groups[h].relative.members.find(id);
+      if (it != state.groups[h].relative.members.end() && h > earlier_group) {
+        earlier = &it->second;
+        earlier_group = h;
       }
-      previous = static_cast<int>(g);
+    }
+    if (earlier != nullptr && static_cast<int64_t>(g) - earlier_group > min_span) {
+      evidence += 1 + std::min(static_cast<int>(placed.known), static_cast<int>(earlier->known));
     }
   }
   return evidence;

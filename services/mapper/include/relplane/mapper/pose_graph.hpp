@@ -15,10 +15,10 @@
 
 namespace relplane::mapper {
 
-// Ties between groups through shared rltplanes that skip at least `min_span` groups: loop
-// closures. Counted with the weight of what the two placements know, so the number grows both
-// when a loop closes and when a closing tie learns more.
-int LoopEvidence(const MapperState& state, int min_span);
+// Ties of group `g` to earlier groups through shared rltplanes that skip at least `min_span`
+// groups: loop closures. Counted with the weight of what the two placements know, so the sum
+// over the groups grows both when a loop closes and when a closing tie learns more.
+int GroupLoopEvidence(const MapperState& state, size_t g, int min_span);
 
 struct PoseGraphResult {
   int iterations = 0;

@@ -50,6 +50,7 @@ struct Group {
   int64_t prior_basis = -1;
   geometry::Pose2 prior_pose;
   bool dirty = true;
+  int loop_evidence = 0;  // GroupLoopEvidence when last placed (pose_graph.hpp)
 };
 
 using PairKey = std::pair<int64_t, int64_t>;
