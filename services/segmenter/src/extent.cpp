@@ -101,7 +101,8 @@ bool WithinTrim(const PlaneGrid& g, const Cell& cell, const CellMoments& m, cons
 void PlanSecondPass(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces) {
   const size_t num_cells = w->cells.size();
   w->mode.assign(num_cells, 0);
-  w->finish.assign(num_cells, CellFinish{});
+  // Only the cells with a mode are read back: the others' slots keep whatever they held.
+  w->finish.resize(num_cells);
   for (size_t s = 0; s < num_cells; ++s) {
     const int32_t piece = w->piece_of[s];
     if (piece < 0 || !(*pieces)[piece].kept) continue;
@@ -111,8 +112,10 @@ void PlanSecondPass(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces) {
     if (!Interior(*w, s)) w->mode[s] |= kExtremes;
     if (!WithinTrim(w->grids[cell.plane], cell, m, p)) {
       w->mode[s] |= kTrimPoints;
-      w->finish[s].beyond.ref = m.all.ref;
     }
+    if (w->mode[s] == 0) continue;
+    w->finish[s] = CellFinish{};
+    w->finish[s].beyond.ref = m.all.ref;
   }
 }
 
