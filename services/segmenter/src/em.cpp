@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "simd.hpp"
+
 namespace relplane::segmenter {
 namespace {
 
@@ -100,8 +102,8 @@ void RangeVariance(const Cloud& points, float range_noise, std::vector<float>* q
 
 }  // namespace
 
-void EStep(const Cloud& points, const std::vector<EmPlane>& planes, const Options& options,
-           Responsibilities* resp) {
+RELPLANE_SIMD_CLONES void EStep(const Cloud& points, const std::vector<EmPlane>& planes,
+                                const Options& options, Responsibilities* resp) {
   const float outlier_density = options.outlier_density;
   RangeVariance(points, options.range_noise, &resp->range_variance);
   const bool range_noise = options.range_noise > 0.0f;
@@ -147,8 +149,8 @@ void EStep(const Cloud& points, const std::vector<EmPlane>& planes, const Option
   for (int i = 0; i < n; ++i) total[i] *= outlier_density;
 }
 
-void MStep(const Cloud& points, const Responsibilities& resp, const Options& options,
-           std::vector<EmPlane>* planes) {
+RELPLANE_SIMD_CLONES void MStep(const Cloud& points, const Responsibilities& resp,
+                                const Options& options, std::vector<EmPlane>* planes) {
   const int n = resp.num_points;
   const float* __restrict x = points.x.data();
   const float* __restrict y = points.y.data();
