@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "simd.hpp"
+
 namespace relplane::segmenter {
 namespace {
 
@@ -13,9 +15,9 @@ constexpr float kCrossingAngleDeg = 20.0f;
 constexpr size_t kBlock = 512;
 
 // Squared distances of all points to one plane, in units of each point's threshold.
-void Scores(size_t n, const float* __restrict x, const float* __restrict y,
-            const float* __restrict z, const EmPlane& plane, float t2, const float* q,
-            float* __restrict out) {
+RELPLANE_SIMD_CLONES void Scores(size_t n, const float* __restrict x, const float* __restrict y,
+                                 const float* __restrict z, const EmPlane& plane, float t2,
+                                 const float* q, float* __restrict out) {
   const float nx = plane.normal.x(), ny = plane.normal.y(), nz = plane.normal.z(), d = plane.d;
   const float var = plane.sigma * plane.sigma;
   if (q == nullptr) {
@@ -34,8 +36,9 @@ void Scores(size_t n, const float* __restrict x, const float* __restrict y,
 
 // Keeps the best and second-best plane per point. Masks and min/max instead of branches so the
 // loop vectorises (best <= second always holds).
-void Rank(size_t n, const float* __restrict score, int32_t id, float* __restrict b,
-          float* __restrict s2, int32_t* __restrict l, int32_t* __restrict l2) {
+RELPLANE_SIMD_CLONES void Rank(size_t n, const float* __restrict score, int32_t id,
+                               float* __restrict b, float* __restrict s2, int32_t* __restrict l,
+                               int32_t* __restrict l2) {
   for (size_t i = 0; i < n; ++i) {
     const float bi = b[i], si = s2[i], sc = score[i];
     const int32_t li = l[i], l2i = l2[i];
@@ -51,8 +54,9 @@ void Rank(size_t n, const float* __restrict score, int32_t id, float* __restrict
 
 }  // namespace
 
-void AssignPoints(const Cloud& cloud, const std::vector<EmPlane>& planes, const Options& options,
-                  std::vector<int32_t>* labels, std::vector<uint8_t>* ambiguous) {
+RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmPlane>& planes,
+                                       const Options& options, std::vector<int32_t>* labels,
+                                       std::vector<uint8_t>* ambiguous) {
   const size_t n = cloud.size();
   const size_t k = planes.size();
   labels->resize(n);
