@@ -43,8 +43,17 @@ GeneratorSpec ReadGenerator(Reader& r) {
     HallwayLoopParams p;
     ReadVector(r, "size", &p.size);
     r.Read("width", &p.width);
+    r.Read("recess_spacing", &p.recess_spacing);
+    r.Read("recess_width", &p.recess_width);
+    r.Read("recess_depth", &p.recess_depth);
     RequirePositive(r, "width", p.width);
     if (!(p.size.minCoeff() > 2.0 * p.width)) r.Fail("size", "must exceed twice the width");
+    RequireNonNegative(r, "recess_spacing", p.recess_spacing);
+    RequirePositive(r, "recess_width", p.recess_width);
+    RequirePositive(r, "recess_depth", p.recess_depth);
+    if (p.recess_spacing > 0.0 && !(p.recess_width < p.recess_spacing)) {
+      r.Fail("recess_width", "must be less than recess_spacing, or recesses would merge");
+    }
     return p;
   }
   if (type == "office") {

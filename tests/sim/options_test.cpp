@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <variant>
 
 #include "options_yaml.hpp"
 
@@ -127,6 +128,31 @@ TEST(SimOptions, UnknownKeyInsideAListItem) {
       ErrorOf("sim:\n  world:\n    generators:\n      - type: hallway_loop\n        widht: 2\n");
   EXPECT_NE(e.find("test.yaml:5"), std::string::npos) << e;
   EXPECT_NE(e.find("sim.world.generators[0].widht"), std::string::npos) << e;
+}
+
+TEST(SimOptions, HallwayLoopRecesses) {
+  const ServiceOptions o = FromText(
+      "sim:\n  world:\n    generators:\n      - {type: hallway_loop, recess_spacing: 4, "
+      "recess_width: 1.2, recess_depth: 0.5}\n");
+  const auto& p = std::get<HallwayLoopParams>(o.sim.world.generators.at(0));
+  EXPECT_EQ(p.recess_spacing, 4.0);
+  EXPECT_EQ(p.recess_width, 1.2);
+  EXPECT_EQ(p.recess_depth, 0.5);
+  const auto& d = std::get<HallwayLoopParams>(
+      FromText("sim:\n  world:\n    generators:\n      - {type: hallway_loop}\n")
+          .sim.world.generators.at(0));
+  EXPECT_EQ(d.recess_spacing, 0.0) << "no recesses unless asked for";
+  const std::string head = "sim:\n  world:\n    generators:\n      - type: hallway_loop\n";
+  std::string e = ErrorOf(head + "        recess_spacing: -1\n");
+  EXPECT_NE(e.find("recess_spacing"), std::string::npos) << e;
+  EXPECT_NE(e.find("negative"), std::string::npos) << e;
+  e = ErrorOf(head + "        recess_depth: 0\n");
+  EXPECT_NE(e.find("recess_depth"), std::string::npos) << e;
+  e = ErrorOf(head + "        recess_width: -0.5\n");
+  EXPECT_NE(e.find("recess_width"), std::string::npos) << e;
+  e = ErrorOf(head + "        recess_spacing: 1\n        recess_width: 1\n");
+  EXPECT_NE(e.find("recess_width"), std::string::npos) << e;
+  EXPECT_NE(e.find("less than recess_spacing"), std::string::npos) << e;
 }
 
 TEST(SimOptions, NegativeRate) {

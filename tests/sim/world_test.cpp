@@ -115,6 +115,103 @@ TEST(Generators, HallwayLoopCornerShowsOneWall) {
   EXPECT_EQ(walls.size(), 1u);
 }
 
+// recess_spacing 0 (the default) is the plain loop of before: outer and inner box, nothing else,
+// whatever the other recess options say.
+TEST(Generators, HallwayLoopWithoutRecessesIsThePlainLoop) {
+  HallwayLoopParams p;
+  p.recess_width = 2.0;
+  p.recess_depth = 1.0;
+  const World world = Build(p);
+  using V = Eigen::Vector2d;
+  const V outer[4] = {V(-1, -1), V(15, -1), V(15, 9), V(-1, 9)};
+  const V inner[4] = {V(1, 1), V(13, 1), V(13, 7), V(1, 7)};
+  ASSERT_EQ(CountWalls(world), 8);
+  for (int i = 0; i < 8; ++i) {
+    const V* c = i < 4 ? outer : inner;
+    const Rect expected = Rect::Wall(c[i % 4], c[(i + 1) % 4], 0.0, 2.5);
+    EXPECT_EQ(world.rects[i].origin, expected.origin) << i;
+    EXPECT_EQ(world.rects[i].u, expected.u) << i;
+    EXPECT_EQ(world.rects[i].v, expected.v) << i;
+  }
+}
+
+// Two floor-plan segments share no stretch of a line and do not cross; meeting at an end is fine.
+bool Overlap(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1, const Eigen::Vector2d& b0,
+             const Eigen::Vector2d& b1) {
+  auto cross = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y) {
+    return x.x() * y.y() - x.y() * y.x();
+  };
+  const Eigen::Vector2d da = a1 - a0, db = b1 - b0;
+  constexpr double kEps = 1e-9;
+  if (std::abs(cross(da, db)) < kEps) {
+    if (std::abs(cross(da, b0 - a0)) > kEps * da.norm()) return false;  // parallel, apart
+    const Eigen::Vector2d t = da.normalized();
+    const double lo = std::max(0.0, std::min(t.dot(b0 - a0), t.dot(b1 - a0)));
+    const double hi = std::min(da.norm(), std::max(t.dot(b0 - a0), t.dot(b1 - a0)));
+    return hi - lo > kEps;
+  }
+  const double s = cross(b0 - a0, db) / cross(da, db);
+  const double u = cross(b0 - a0, da) / cross(da, db);
+  return s > kEps && s < 1 - kEps && u > kEps && u < 1 - kEps;
+}
+
+TEST(Generators, HallwayLoopRecessesOnTheOuterWalls) {
+  HallwayLoopParams p;
+  p.recess_spacing = 3.0;
+  const World world = Build(p);
+  // 16 m sides: recesses at 3, 6, 9, 12 m (15 m is within 1.5 m of the corner); 10 m sides: at
+  // 3 and 6 m. Each recess adds a jamb, a back wall, a jamb and another wall piece.
+  const int recesses = 2 * 4 + 2 * 2;
+  EXPECT_EQ(CountWalls(world), 4 + 4 * recesses + 4);
+  ExpectConsistent(world, 2.5);
+  ExpectNoLooseEnds(world);
+  for (const Eigen::Vector2d& q : {Eigen::Vector2d(0, 0), Eigen::Vector2d(14, 0),
+                                   Eigen::Vector2d(14, 8), Eigen::Vector2d(0, 8)}) {
+    ExpectClosedAround(world, q);
+  }
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> walls;
+  for (const Rect& r : world.rects) {
+    if (std::abs(r.Normal().z()) < 0.1) {
+      walls.emplace_back(r.origin.head<2>(), (r.origin + r.u).head<2>());
+    }
+  }
+  for (size_t i = 0; i < walls.size(); ++i) {
+    for (size_t j = i + 1; j < walls.size(); ++j) {
+      EXPECT_FALSE(Overlap(walls[i].first, walls[i].second, walls[j].first, walls[j].second))
+          << "walls " << i << " and " << j;
+    }
+  }
+  // Back walls: 1 m long, 0.3 m outside the outer wall lines x = -1, x = 15, y = -1, y = 9, and
+  // none within 1.5 m of a corner. Jambs: 0.3 m, across the outer wall line.
+  int back_walls = 0, jambs = 0;
+  for (const auto& [a, b] : walls) {
+    const Eigen::Vector2d d = b - a;
+    if (std::abs(d.norm() - p.recess_width) < 1e-9) {
+      ++back_walls;
+      const bool along_x = std::abs(d.y()) < 1e-12;
+      const double line = along_x ? a.y() : a.x();
+      const double lo = -1.0, hi = along_x ? 9.0 : 15.0;
+      EXPECT_TRUE(std::abs(line - (lo - 0.3)) < 1e-9 || std::abs(line - (hi + 0.3)) < 1e-9)
+          << a.transpose() << " -> " << b.transpose();
+      const double s0 = along_x ? std::min(a.x(), b.x()) : std::min(a.y(), b.y());
+      const double s1 = along_x ? std::max(a.x(), b.x()) : std::max(a.y(), b.y());
+      EXPECT_GE(s0, -1.0 + 1.5 - 1e-9);
+      EXPECT_LE(s1, (along_x ? 15.0 : 9.0) - 1.5 + 1e-9);
+    } else if (std::abs(d.norm() - p.recess_depth) < 1e-9) {
+      ++jambs;
+    }
+  }
+  EXPECT_EQ(back_walls, recesses);
+  EXPECT_EQ(jambs, 2 * recesses);
+  // Through a recess (x from 2 to 3 m on the bottom wall) the robot sees its back wall, 0.3 m
+  // beyond the outer wall line; beside it, the outer wall.
+  RayCaster caster(world);
+  const Hit h = caster.CastOneBruteForce({2.5, 0.0, 1.0}, {0, -1, 0}, 100.0);
+  EXPECT_NEAR(h.range, 1.3, 1e-9);
+  const Hit wall = caster.CastOneBruteForce({3.5, 0.0, 1.0}, {0, -1, 0}, 100.0);
+  EXPECT_NEAR(wall.range, 1.0, 1e-9);
+}
+
 TEST(Generators, OfficeRoomsAreClosedAndJoinedByDoors) {
   for (double frame : {0.1, 0.0}) {
     OfficeParams p;

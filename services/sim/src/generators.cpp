@@ -40,6 +40,33 @@ void AddWallWithDoor(const Vector2d& a, const Vector2d& b, const OfficeParams& p
   }
 }
 
+// The wall a -> b (part of a counter-clockwise outer boundary, so the outside is on its right)
+// with door recesses as HallwayLoopParams describes. The pieces follow the boundary in order:
+// wall, jamb out, back wall, jamb in, wall, ...
+void AddOuterWallWithRecesses(const Vector2d& a, const Vector2d& b, const HallwayLoopParams& p,
+                              double height, std::vector<Rect>* out) {
+  const double length = (b - a).norm();
+  const Vector2d t = (b - a) / length;
+  const Vector2d back = p.recess_depth * Vector2d(t.y(), -t.x());  // right of a -> b
+  Vector2d from = a;
+  if (p.recess_spacing > 0.0) {
+    for (int k = 1;; ++k) {
+      const double s0 = k * p.recess_spacing;
+      const double s1 = s0 + p.recess_width;
+      if (s1 > length - kRecessCornerClearance) break;
+      if (s0 < kRecessCornerClearance) continue;
+      const Vector2d d0 = a + s0 * t;
+      const Vector2d d1 = a + s1 * t;
+      out->push_back(Rect::Wall(from, d0, 0.0, height));
+      out->push_back(Rect::Wall(d0, d0 + back, 0.0, height));
+      out->push_back(Rect::Wall(d0 + back, d1 + back, 0.0, height));
+      out->push_back(Rect::Wall(d1 + back, d1, 0.0, height));
+      from = d1;
+    }
+  }
+  out->push_back(Rect::Wall(from, b, 0.0, height));
+}
+
 }  // namespace
 
 void AddStraightHallway(const StraightHallwayParams& p, double height, std::vector<Rect>* out) {
@@ -58,7 +85,8 @@ void AddHallwayLoop(const HallwayLoopParams& p, double height, std::vector<Rect>
   const double h = 0.5 * p.width;
   const Vector2d lo(-h, -h);
   const Vector2d hi = lo + p.size;
-  AddBox(lo, hi, height, out);
+  const Vector2d c[4] = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+  for (int i = 0; i < 4; ++i) AddOuterWallWithRecesses(c[i], c[(i + 1) % 4], p, height, out);
   AddBox(lo + Vector2d(p.width, p.width), hi - Vector2d(p.width, p.width), height, out);
 }
 

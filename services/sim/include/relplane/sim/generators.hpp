@@ -21,10 +21,19 @@ struct StraightHallwayParams {
 // A rectangular loop of hallway (the paper's Fig. 5). The hallway's centre line is the
 // rectangle (0,0) - (size.x - width, 0) - (size.x - width, size.y - width) - (0, size.y - width),
 // so a robot starting at the origin heading +x drives along the bottom hallway.
+// With recess_spacing > 0 the outer walls have door recesses: at every multiple of
+// recess_spacing along each outer wall (measured from its corner, counter-clockwise) the wall
+// is broken for recess_width and continues recess_depth further out, joined by two jambs. No
+// recess comes within kRecessCornerClearance of a corner. They give the position along a
+// hallway something to be fixed by: two parallel side walls alone do not.
 struct HallwayLoopParams {
   Eigen::Vector2d size{16.0, 10.0};  // outer extent, metres
   double width = 2.0;                // hallway width
+  double recess_spacing = 0.0;       // metres between recesses; 0: plain walls
+  double recess_width = 1.0;         // along the wall
+  double recess_depth = 0.3;         // behind the outer wall line
 };
+inline constexpr double kRecessCornerClearance = 1.5;
 
 // A grid of rooms joined by doors in every wall between two rooms. Room (0, 0) is centred on
 // the origin; room (i, j) is centred on (i * room_size.x, j * room_size.y).
