@@ -166,13 +166,14 @@ Result Segmenter::Segment(const Cloud& input) {
   AssignPoints(described, planes, options_, &labels_, &ambiguous_);
   const auto assigned =
       std::count_if(labels_.begin(), labels_.end(), [](int32_t l) { return l >= 0; });
-  result.assigned_points = static_cast<int64_t>(std::llround(assigned * scale));
+  result.assigned_points = static_cast<int64_t>(assigned * scale);  // rounded down
   if (!options_.keep_labels) {
     result.planes = DescribePieces(described, labels_, ambiguous_, planes, describe,
                                    result.angular_step, nullptr, &workspace_);
     if (subsample) {
       for (DetectedPlane& p : result.planes) {
-        p.num_points = static_cast<decltype(p.num_points)>(std::llround(p.num_points * scale));
+        // Rounded down, as the assigned count is: the pieces never add up to more.
+        p.num_points = static_cast<decltype(p.num_points)>(p.num_points * scale);
       }
     }
     return result;

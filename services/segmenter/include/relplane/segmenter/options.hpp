@@ -59,10 +59,10 @@ struct Options {
   float reach_spacings = 1.5f;
   float max_reach = 1.5f;  // ... but never beyond this, metres
   int max_cells = 250000;  // the grid coarsens beyond this many cells per plane
-  // Pieces are fitted to one in s of their points, s chosen so at most this many points of a
-  // cloud enter the fits (a 640x480 cloud: one in 4; errors grow as 1 / sqrt(points), and
-  // 75,000 points leave them far below the systematic ones). Support counts, connectivity and
-  // extents use every point.
+  // Pieces are fitted to one in s of the described points (see describe_points_max), s chosen so
+  // at most this many enter the fits (errors grow as 1 / sqrt(points), and 75,000 points leave
+  // them far below the systematic ones). Support counts, connectivity and extents use every
+  // described point.
   int fit_points_max = 80000;
   // Larger clouds are assigned, split into pieces and described from a stratified subsample of
   // at most this many points (a 640x480 cloud: one in 8); support counts are scaled back to the
