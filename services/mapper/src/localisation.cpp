@@ -14,6 +14,8 @@ using Eigen::Vector2d;
 
 constexpr double kOutlier = 0.3;      // m: a wall this far from its line is left out
 constexpr double kEdgeGate = 0.1;     // m: motion model snaps to a mapped end this close
+constexpr double kOpen = 0.02;        // information below this (lines within ~11 degrees of
+                                      // parallel) leaves a direction open
 
 struct System {
   Matrix2d a = Matrix2d::Zero();
@@ -146,12 +148,21 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       }
     }
     // The previous position only decides a direction the walls leave open.
+    // Solved along the system's eigenvectors: walls within a few degrees of parallel leave the
+    // direction along them open, and there the previous position is kept as it is. Their lines'
+    // millimetre disagreements would otherwise move it by centimetres each iteration, through
+    // the slight angle between them, and the motion model would drift along them.
     Eigen::SelfAdjointEigenSolver<Matrix2d> final_eig(sys.a);
-    if (final_eig.eigenvalues()(0) < options.min_information) {
-      sys.a += options.prior_weight * Matrix2d::Identity();
-      sys.b += options.prior_weight * previous.Translation();
+    const double prior =
+        final_eig.eigenvalues()(0) < options.min_information ? options.prior_weight : 0.0;
+    Vector2d pos = Vector2d::Zero();
+    for (int k = 0; k < 2; ++k) {
+      const Vector2d v = final_eig.eigenvectors().col(k);
+      const double lambda = final_eig.eigenvalues()(k);
+      pos += v * (lambda < kOpen ? v.dot(previous.Translation())
+                                 : (v.dot(sys.b) + prior * v.dot(previous.Translation())) /
+                                       (lambda + prior));
     }
-    const Vector2d pos = sys.a.ldlt().solve(sys.b);
     out.pose = {pos.x(), pos.y(), yaw};
     out.planes = static_cast<int>(planes.size());
     out.status = tracking ? PoseStatus::kTracking : PoseStatus::kMotionModel;

@@ -58,20 +58,46 @@ std::optional<Observation> MakeObservation(const PlaneInput& input, int64_t iter
   return obs;
 }
 
+namespace {
+
+// Distance along the unit ray u from the sensor to the line of `obs`, or infinity when the ray
+// does not meet it in front of the sensor.
+double RayToLine(const Observation& obs, const Eigen::Vector2d& u) {
+  const double along = obs.normal.dot(u);
+  if (along > -1e-6) return std::numeric_limits<double>::infinity();
+  return obs.d / -along;
+}
+
+}  // namespace
+
 void MarkOccludedEdges(std::vector<Observation>* observations) {
-  constexpr double kBearing = 0.0175;  // rad: same line of sight
-  constexpr double kNearer = 0.05;     // m
+  // rad: a nearer plane's edge this close in bearing is on the same line of sight.
+  constexpr double kBearing = 0.0175;
+  constexpr double kNearer = 0.05;  // m
   auto& obs = *observations;
   for (size_t a = 0; a < obs.size(); ++a) {
     for (int e = 0; e < 2; ++e) {
       const Eigen::Vector2d& p = obs[a].edge[e];
-      const double bearing = std::atan2(p.y(), p.x()), range = p.norm();
+      const double range = p.norm();
+      if (range < 1e-6) continue;
+      const Eigen::Vector2d u = p / range;
+      const double bearing = std::atan2(p.y(), p.x());
       for (size_t b = 0; b < obs.size() && !obs[a].cut[e]; ++b) {
         if (b == a) continue;
-        for (const Eigen::Vector2d& q : obs[b].edge) {
-          const double db = std::abs(std::remainder(std::atan2(q.y(), q.x()) - bearing, 2 * M_PI));
-          if (db < kBearing && q.norm() < range - kNearer) obs[a].cut[e] = true;
-        }
+        // The edge is seen past a nearer plane: past its end, or through a hole in it (a door
+        // in a wall the segmenter reports as one rectangle). A wall end is never seen there.
+        const Eigen::Vector2d* first = &obs[b].edge[0];
+        const Eigen::Vector2d* last = &obs[b].edge[1];
+        double lo = std::atan2(first->y(), first->x());
+        double span = std::remainder(std::atan2(last->y(), last->x()) - lo, 2 * M_PI);
+        if (span < 0.0) lo += span, span = -span, std::swap(first, last);
+        const double off = std::remainder(bearing - lo, 2 * M_PI);
+        if (off < -kBearing || off > span + kBearing) continue;
+        // Within the plane's view: its line on this ray; just beside it: its edge there.
+        const double nearest = off < 0.0      ? first->norm()
+                               : off > span ? last->norm()
+                                            : RayToLine(obs[b], u);
+        if (nearest < range - kNearer) obs[a].cut[e] = true;
       }
     }
   }

@@ -56,7 +56,9 @@ std::optional<Observation> MakeObservation(const PlaneInput& input, int64_t iter
                                            double max_normal_z);
 
 // Marks the edges of this iteration's observations that a nearer plane hides: another plane
-// has an edge on the same line of sight, closer to the sensor.
+// has an edge on the same line of sight, closer to the sensor, or lies across that line of
+// sight closer to the sensor (the edge is seen through a hole in it, e.g. a door in a wall the
+// segmenter reports as one rectangle).
 void MarkOccludedEdges(std::vector<Observation>* observations);
 
 // Frame angle of a wall with unit 2D normal n.
