@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "relplane/mapper/localisation.hpp"
 #include "relplane/mapper/pose_graph.hpp"
 #include "relplane/mapper/relative_map.hpp"
 
@@ -74,12 +75,7 @@ Pose2 Solve(const std::vector<Link>& links, const Pose2& prior, double prior_wei
     }
   }
   // The prior only decides a direction the links leave open.
-  Eigen::SelfAdjointEigenSolver<Matrix2d> final_eig(a);
-  if (final_eig.eigenvalues()(0) < 0.5) {
-    a += prior_weight * Matrix2d::Identity();
-    b += prior_weight * prior.Translation();
-  }
-  const Vector2d t = a.ldlt().solve(b);
+  const Vector2d t = SolveWithPrior(a, b, prior.Translation(), prior_weight, 0.5);
   return {t.x(), t.y(), yaw};
 }
 

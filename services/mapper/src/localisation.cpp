@@ -82,6 +82,22 @@ bool LearnedFrustum::Clipped(const Eigen::Vector2d& edge) const {
   return range > RangeLimit() - kEdgeNoise - 4 * kRangeBin;
 }
 
+Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& b,
+                               const Eigen::Vector2d& previous, double prior_weight,
+                               double min_information) {
+  // Solved along the eigenvectors of a, so the open direction is decoupled from the others.
+  Eigen::SelfAdjointEigenSolver<Matrix2d> eig(a);
+  const double prior = eig.eigenvalues()(0) < min_information ? prior_weight : 0.0;
+  Vector2d pos = Vector2d::Zero();
+  for (int k = 0; k < 2; ++k) {
+    const Vector2d v = eig.eigenvectors().col(k);
+    const double lambda = eig.eigenvalues()(k);
+    pos += v * (lambda < kOpen ? v.dot(previous)
+                               : (v.dot(b) + prior * v.dot(previous)) / (lambda + prior));
+  }
+  return pos;
+}
+
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
                       const LearnedFrustum& frustum, const LocalisationOptions& options) {
   PoseEstimate out;
@@ -148,21 +164,8 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       }
     }
     // The previous position only decides a direction the walls leave open.
-    // Solved along the system's eigenvectors: walls within a few degrees of parallel leave the
-    // direction along them open, and there the previous position is kept as it is. Their lines'
-    // millimetre disagreements would otherwise move it by centimetres each iteration, through
-    // the slight angle between them, and the motion model would drift along them.
-    Eigen::SelfAdjointEigenSolver<Matrix2d> final_eig(sys.a);
-    const double prior =
-        final_eig.eigenvalues()(0) < options.min_information ? options.prior_weight : 0.0;
-    Vector2d pos = Vector2d::Zero();
-    for (int k = 0; k < 2; ++k) {
-      const Vector2d v = final_eig.eigenvectors().col(k);
-      const double lambda = final_eig.eigenvalues()(k);
-      pos += v * (lambda < kOpen ? v.dot(previous.Translation())
-                                 : (v.dot(sys.b) + prior * v.dot(previous.Translation())) /
-                                       (lambda + prior));
-    }
+    const Vector2d pos = SolveWithPrior(sys.a, sys.b, previous.Translation(),
+                                        options.prior_weight, options.min_information);
     out.pose = {pos.x(), pos.y(), yaw};
     out.planes = static_cast<int>(planes.size());
     out.status = tracking ? PoseStatus::kTracking : PoseStatus::kMotionModel;

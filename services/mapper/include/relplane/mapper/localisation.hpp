@@ -65,6 +65,15 @@ class LearnedFrustum {
   double range_limit_ = std::numeric_limits<double>::infinity();
 };
 
+// Least squares a x = b for a position, with `previous` as a weak prior (weight `prior_weight`,
+// applied when the smallest information is below `min_information`). Along a direction the
+// equations leave open (walls within ~11 degrees of parallel) the previous position is kept as
+// it is: their lines' millimetre disagreements would otherwise move it by centimetres, through
+// the slight angle between them, every time it is solved.
+Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& b,
+                               const Eigen::Vector2d& previous, double prior_weight,
+                               double min_information);
+
 // Solves the sensor pose: yaw from the mean orientation difference, position by least squares
 // over the walls' lines (one equation each) and their static edges seen now (one more each, along
 // the wall), with `previous` as a weak prior. With a single wall, or walls that leave the position
