@@ -113,6 +113,44 @@ TEST(Observation, ReducesAWallAndRejectsFloorsAndBadNumbers) {
   EXPECT_TRUE(MakeObservation(flipped, 0, 0.3)->normal.isApprox(Vector2d(-1, 0)));
 }
 
+// A far wall seen through a door in a nearer wall that the segmenter reports as one rectangle
+// (no edge of the nearer wall on the line of sight): the far wall's visible ends are where the
+// door's sides hide it, not its ends. A wall end at a corner of the nearer wall is not hidden.
+TEST(Observation, EdgesSeenThroughANearerPlaneAreCut) {
+  std::vector<Observation> obs;
+  for (const PlaneInput& in : {Wall({2, 2}, {2, -2}), Wall({6, 1.8}, {6, -1.8})}) {
+    obs.push_back(*MakeObservation(in, 0, 0.3));
+  }
+  MarkOccludedEdges(&obs);
+  EXPECT_FALSE(obs[0].cut[0] || obs[0].cut[1]);
+  EXPECT_TRUE(obs[1].cut[0] && obs[1].cut[1]);
+  // A corridor: the side wall y = 1 from x = 1 to 5 meets the end wall x = 5 at its corner.
+  obs.clear();
+  for (const PlaneInput& in : {Wall({1, 1}, {5, 1}), Wall({5, 1}, {5, -1})}) {
+    obs.push_back(*MakeObservation(in, 0, 0.3));
+  }
+  MarkOccludedEdges(&obs);
+  for (const Observation& o : obs) EXPECT_FALSE(o.cut[0] || o.cut[1]);
+}
+
+// Two walls a few milliradians from parallel, their lines a few millimetres apart: they fix the
+// position across them and leave it open along them, where the previous position stays put.
+TEST(Localisation, NearParallelWallsLeaveThePositionAlongThemAtThePreviousOne) {
+  Eigen::Matrix2d a = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+  const double angles[2] = {0.0, 0.002}, offsets[2] = {2.000, 2.003};
+  for (int k = 0; k < 2; ++k) {
+    // The sensor is 2 m in front of each wall's line through (10, offset): n . c = n . P + d.
+    const Vector2d n = NormalOf(angles[k]);
+    a += n * n.transpose();
+    b += n * (n.dot(Vector2d(10.0, offsets[k])) + 2.0);
+  }
+  const Vector2d previous(10.0, 0.0);
+  const Vector2d pos = SolveWithPrior(a, b, previous, 1e-4, 0.5);
+  EXPECT_NEAR(pos.x(), 10.0, 1e-3);
+  EXPECT_NEAR(pos.y(), 0.0, 0.01);  // 2 m in front of walls at y = 2
+}
+
 TEST(Registration, MatchesTheSameWallNotItsCollinearNeighbour) {
   RegistrationOptions options;
   const Observation last = *MakeObservation(Wall({3, -1}, {3, 1}), 10, 0.3);
