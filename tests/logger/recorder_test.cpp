@@ -114,6 +114,13 @@ TEST_F(RecorderTest, BadMessagesAreRejectedWithAReason) {
   msg = testing::PoseMessage(bad);
   for (double& q : msg.orientation) q = 0.0;
   EXPECT_EQ(Feed(recorder, "SIM_TRUTH", msg, 0), FeedResult::kRejected);
+  relplane::status_t status;
+  status.service = "relplane-\x1b[2Jmapper";  // a terminal escape in the name
+  EXPECT_EQ(Feed(recorder, "STATUS", status, 0), FeedResult::kRejected);
+  status.service = std::string(65, 'a');
+  EXPECT_EQ(Feed(recorder, "STATUS", status, 0), FeedResult::kRejected);
+  status.service = "relplane-mapper";
+  EXPECT_EQ(Feed(recorder, "STATUS", status, 0), FeedResult::kUsed);
   ASSERT_TRUE(recorder.Write(&reason));
   EXPECT_EQ(recorder.LastMetrics().run.estimate_poses, 0);
 }

@@ -1,5 +1,7 @@
 #include "convert.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <relplane/plane_set_t.hpp>
 
@@ -136,6 +138,14 @@ FeedResult FeedEncoded(RunRecorder& recorder, const std::string& channel, const 
         return rejected("counter " + std::to_string(counter) + " out of range");
       }
     }
+    // The name is printed in the summary and keys a table: no control characters (a hostile
+    // name could drive the terminal) and a bounded length.
+    const bool name_ok =
+        !msg.service.empty() && msg.service.size() <= 64 &&
+        std::all_of(msg.service.begin(), msg.service.end(), [](char c) {
+          return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+        });
+    if (!name_ok) return rejected("service name is not 1-64 characters of [A-Za-z0-9._-]");
     recorder.OnStatus(FromMessage(msg), receive_us);
     return FeedResult::kUsed;
   }
