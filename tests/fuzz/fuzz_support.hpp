@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <relplane/plane_t.hpp>
+
 #include "relplane/common/bus.hpp"
 
 namespace relplane::fuzz {
@@ -78,6 +80,17 @@ M MustDecode(const std::vector<uint8_t>& bytes) {
 
 inline void MustBeFinite(double value) {
   if (!std::isfinite(value)) std::abort();
+}
+
+// Every number a published plane carries is finite.
+inline void MustBeFinite(const plane_t& plane) {
+  for (float v : plane.normal) MustBeFinite(v);
+  for (float v : plane.centroid) MustBeFinite(v);
+  MustBeFinite(plane.d);
+  MustBeFinite(plane.rms);
+  for (const auto& vertex : plane.vertices) {
+    for (float v : vertex) MustBeFinite(v);
+  }
 }
 
 }  // namespace relplane::fuzz
