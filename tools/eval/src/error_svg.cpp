@@ -55,13 +55,17 @@ std::string RenderErrorSvg(const TrajectoryMetrics& trajectory, double width_px)
   std::string out = svg::Header(width, height);
   out += svg::Text(kLeft, 24, "Position error against truth (x-y), matched by seq", "start",
                    "font-size=\"15\" font-weight=\"bold\"");
-  for (long k = 0; k * e_step <= axes.e1 + 1e-9; ++k) {
+  // At most kMaxTicks an axis: far from zero (a hostile utime) k * step stops changing as k
+  // grows and the loop would not end (the same flaw relplane-fuzz-logger found in map.svg).
+  constexpr long kMaxTicks = 100;
+  for (long k = 0; k * e_step <= axes.e1 + 1e-9 && k < kMaxTicks; ++k) {
     const double e = k * e_step;
     out += svg::Line(kLeft, axes.Y(e), kLeft + axes.width, axes.Y(e),
                      "stroke=\"#eeeeee\" stroke-width=\"1\"");
     out += svg::Text(kLeft - 6, axes.Y(e) + 4, svg::Format("%g", e), "end");
   }
-  for (long k = std::lround(std::ceil(axes.t0 / t_step)); k * t_step <= axes.t1 + 1e-9; ++k) {
+  const long t_first = std::lround(std::ceil(axes.t0 / t_step));
+  for (long k = t_first; k * t_step <= axes.t1 + 1e-9 && k - t_first < kMaxTicks; ++k) {
     const double t = k * t_step;
     out += svg::Line(axes.X(t), kTop + kPlotHeight, axes.X(t), kTop + kPlotHeight + 5,
                      "stroke=\"black\" stroke-width=\"1\"");

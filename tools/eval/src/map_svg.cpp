@@ -205,14 +205,21 @@ std::string RenderMapSvg(const MapPicture& pic) {
   std::string grid;
   const char* tick_style = "fill=\"#999999\" font-size=\"10\"";
   // Integer multiples of the step, so labels print as round numbers.
-  for (long k = std::lround(std::ceil(b.lo.x() / step)); k * step <= b.hi.x(); ++k) {
+  // At most kMaxGridLines a direction: far from the origin (a hostile pose at 1e17 m) k * step
+  // stops changing when k grows, and the loop would not end (found by relplane-fuzz-logger).
+  constexpr int kMaxGridLines = 100;
+  int lines = 0;
+  for (long k = std::lround(std::ceil(b.lo.x() / step));
+       k * step <= b.hi.x() && lines < kMaxGridLines; ++k, ++lines) {
     const double x = k * step;
     grid += svg::Line(view.X(x), view.Y(b.lo.y()), view.X(x), view.Y(b.hi.y()),
                       "stroke=\"#eeeeee\" stroke-width=\"1\"");
     grid += svg::Text(view.X(x), view.Y(b.lo.y()) - 3, svg::Format("%g", x + 0.0), "middle",
                       tick_style);
   }
-  for (long k = std::lround(std::ceil(b.lo.y() / step)); k * step <= b.hi.y(); ++k) {
+  lines = 0;
+  for (long k = std::lround(std::ceil(b.lo.y() / step));
+       k * step <= b.hi.y() && lines < kMaxGridLines; ++k, ++lines) {
     const double y = k * step;
     grid += svg::Line(view.X(b.lo.x()), view.Y(y), view.X(b.hi.x()), view.Y(y),
                       "stroke=\"#eeeeee\" stroke-width=\"1\"");
