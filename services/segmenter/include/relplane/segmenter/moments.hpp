@@ -13,17 +13,7 @@ struct LocalMoments {
 
   void Add(const Eigen::Vector3f& p) {
     if (n == 0) ref = p;
-    const float x = p.x() - ref.x(), y = p.y() - ref.y(), z = p.z() - ref.z();
-    ++n;
-    sx += x;
-    sy += y;
-    sz += z;
-    sxx += x * x;
-    sxy += x * y;
-    sxz += x * z;
-    syy += y * y;
-    syz += y * z;
-    szz += z * z;
+    AddAboutRef(p);
   }
 
   // Adds a point about the reference already set (`ref`), even as the first point.
