@@ -60,6 +60,20 @@ MapperOptions ReadMapperOptions(Reader& r) {
   if (o.comparison.min_samples < 2) cmp.Fail("min_samples", "must be at least 2");
   Positive(cmp, "static_std", o.comparison.static_std);
 
+  Reader rg = r.Child("regrouping");
+  rg.Read("enabled", &o.regrouping.enabled);
+  rg.Read("reorder_after", &o.regrouping.reorder_after);
+  rg.Read("regroup_after", &o.regrouping.regroup_after);
+  rg.Read("min_interval", &o.regrouping.min_interval);
+  rg.Read("freeze_after", &o.regrouping.freeze_after);
+  if (o.regrouping.reorder_after < 1) rg.Fail("reorder_after", "must be at least 1");
+  if (o.regrouping.regroup_after <= o.regrouping.reorder_after) {
+    rg.Fail("regroup_after", "must be after reorder_after");
+  }
+  if (o.regrouping.freeze_after <= o.regrouping.regroup_after) {
+    rg.Fail("freeze_after", "must be after regroup_after");
+  }
+
   Reader loc = r.Child("localisation");
   loc.Read("min_information", &o.localisation.min_information);
   loc.Read("prior_weight", &o.localisation.prior_weight);

@@ -31,6 +31,24 @@ const Observation& ObservedWithPose(const RltPlane& plane, const MapperState& st
   return all.front();
 }
 
+// Member `id` of group `g` as seen when the group was made (for the first group, as first
+// seen), kept in the group: the group can be placed again once the observation is dropped.
+const SeenWall& SeenWhenMade(MapperState& state, size_t g, int64_t id,
+                             const MapperOptions& options) {
+  Group& group = state.groups[g];
+  SeenWall& seen = group.seen[id];
+  if (!seen.valid) {
+    const RltPlane& plane = *state.Plane(id);
+    if (g == 0 && plane.first_seen.valid) {
+      seen = plane.first_seen;
+    } else {
+      const Observation& obs = ObservedWithPose(plane, state, group.created, g == 0);
+      seen = SeenFrom(obs, PoseAt(state, obs.iteration, options));
+    }
+  }
+  return seen;
+}
+
 struct Link {
   Placement relative;
   Placement global;
@@ -87,6 +105,15 @@ Placement Apply(const Pose2& pose, const Placement& p) {
 }
 
 }  // namespace
+
+Placement PlacementOf(const SeenWall& seen, int ref) {
+  Placement p;
+  p.alpha = seen.alpha;
+  p.point = ref >= 0 ? seen.edge[ref] : seen.foot;
+  p.ref = ref;
+  p.known = ref >= 0 ? Known::kPoint : Known::kLine;
+  return p;
+}
 
 Placement PlacementOf(const Observation& obs, const Pose2& pose, int ref) {
   Placement local;
@@ -150,8 +177,7 @@ void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
     if (rel.known == Known::kAngle) {
       // No comparison pins it yet: its line as seen when the group was made, from the pose
       // then (§II.A end: "transformed using current position").
-      const Observation& obs = ObservedWithPose(*state.Plane(id), state, group.created, g == 0);
-      world = PlacementOf(obs, PoseAt(state, obs.iteration, options), -1);
+      world = PlacementOf(SeenWhenMade(state, g, id, options), -1);
     }
     state.global[id] = world;
     state.placed_by[id] = static_cast<int64_t>(g);
@@ -183,21 +209,14 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
       auto it = state.global.find(id);
       if (it != state.global.end()) links.push_back({rel, it->second, state.Plane(id)});
     }
-    // Prior: the basis as observed when the group was first placed, from the pose then. It only
-    // decides directions the links leave open.
-    // The basis may change as evidence grows, so only the sighting is kept, not the frame.
-    const RltPlane* basis = state.Plane(group.relative.basis);
+    // Prior: the basis as seen when the group was made, from the pose then. It only decides
+    // directions the links leave open. The basis may change as evidence grows, so the
+    // sighting is kept, not the frame.
     Pose2 prior = start;
-    if (basis != nullptr) {
-      const Observation* obs = basis->At(group.prior_iteration);
-      if (obs == nullptr || group.prior_basis != basis->Id()) {
-        obs = &ObservedWithPose(*basis, state, group.created, g == 0);
-        group.prior_iteration = obs->iteration;
-        group.prior_basis = basis->Id();
-        group.prior_pose = PoseAt(state, obs->iteration, options);
-      }
+    if (state.Plane(group.relative.basis) != nullptr) {
+      const int64_t basis = group.relative.basis;
       const Placement p =
-          PlacementOf(*obs, group.prior_pose, group.relative.members[basis->Id()].ref);
+          PlacementOf(SeenWhenMade(state, g, basis, options), group.relative.members[basis].ref);
       prior = {p.point.x(), p.point.y(), p.alpha};
     }
     if (links.empty()) {
@@ -208,12 +227,16 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
       for (const auto& [id, rel] : group.relative.members) {
         any_at_start |= state.Plane(id)->FirstSeen() == state.first_iteration;
       }
+      // Each plane's first sighting is kept with the plane: its observations may be gone.
       for (const auto& [id, rel] : group.relative.members) {
         const RltPlane* plane = state.Plane(id);
         if (any_at_start && plane->FirstSeen() != state.first_iteration) continue;
-        const Observation& first = plane->Observations().front();
         const int ref = rel.known == Known::kPoint ? rel.ref : -1;
-        links.push_back({rel, PlacementOf(first, PoseAt(state, first.iteration, options), ref),
+        const Observation& first = plane->Observations().front();
+        links.push_back({rel,
+                         plane->first_seen.valid
+                             ? PlacementOf(plane->first_seen, ref)
+                             : PlacementOf(first, PoseAt(state, first.iteration, options), ref),
                          plane});
       }
     }

@@ -16,6 +16,8 @@ bool Covisible(MapperState& state, const RltPlane& r, int64_t other, int64_t now
 // rltplane in a given grouping".
 bool FitsGroup(MapperState& state, const RltPlane& r, const Group& g, int64_t now,
                const GroupingOptions& options) {
+  // A frozen group's relative map is no longer rebuilt (§II.F): it takes no new member.
+  if (g.Frozen()) return false;
   if (std::find(g.members.begin(), g.members.end(), r.Id()) != g.members.end()) return false;
   for (int64_t m : g.members) {
     if (!Covisible(state, r, m, now, options)) return false;
@@ -58,25 +60,42 @@ void Place(MapperState& state, int64_t id, int64_t now, const GroupingOptions& o
   }
 }
 
-// Is there a group holding `r` and every other grouped plane of this view?
-bool CoveredByAGroup(MapperState& state, const RltPlane& r, const std::vector<int64_t>& visible) {
-  for (int64_t g : r.groups) {
-    const auto& members = state.groups[g].members;
-    bool all = true;
-    for (int64_t other : visible) {
-      const RltPlane* o = state.Plane(other);
-      if (o == nullptr || o->groups.empty() || other == r.Id()) continue;
-      all = all && std::find(members.begin(), members.end(), other) != members.end();
+bool ShareAGroup(const RltPlane& a, const RltPlane& b) {
+  // Both lists are in creation order.
+  auto i = a.groups.begin(), j = b.groups.begin();
+  while (i != a.groups.end() && j != b.groups.end()) {
+    if (*i < *j) {
+      ++i;
+    } else if (*j < *i) {
+      ++j;
+    } else {
+      return true;
     }
-    if (all) return true;
   }
   return false;
+}
+
+// Does `r` already share a group with every grouped plane of this view it is co-visible with?
+// Then every pair in view is compared in a group that already exists (§II.C), and its
+// relative map covers the view: a route driven again and again adds no group once each pair
+// seen together has been grouped together.
+bool CoveredByGroups(MapperState& state, const RltPlane& r, const std::vector<int64_t>& visible,
+                     int64_t now, const GroupingOptions& options) {
+  for (int64_t other : visible) {
+    const RltPlane* o = state.Plane(other);
+    if (o == nullptr || o->groups.empty() || other == r.Id()) continue;
+    if (!ShareAGroup(r, *o) && Covisible(state, r, other, now, options)) return false;
+  }
+  return true;
 }
 
 }  // namespace
 
 int CommonRecent(const RltPlane& a, const RltPlane& b, int64_t now, int window) {
-  const int64_t from = now - window + 1;
+  return CommonSince(a, b, now - window + 1);
+}
+
+int CommonSince(const RltPlane& a, const RltPlane& b, int64_t from) {
   const auto& oa = a.Observations();
   const auto& ob = b.Observations();
   size_t i = a.LowerBound(from), j = b.LowerBound(from);
@@ -113,16 +132,16 @@ void UpdateGroups(MapperState& state, const std::vector<int64_t>& visible, int64
   }
   state.ungrouped = std::move(waiting);
   // Re-seen rltplanes (backtracking, loop closure: §II.A end) rejoin the current groups so the
-  // new relative maps link to them, unless one old group already holds it with every other
-  // grouped plane in view: that group's relative map covers the view, and a second lap adds
-  // no group there (the number of groups stays bounded on a route driven again and again).
+  // new relative maps link to them, unless they already share a group with every plane in
+  // view they are co-visible with: then the old groups cover the view, and a later lap adds no
+  // group there (the number of groups stays bounded on a route driven again and again).
   const int n = static_cast<int>(state.groups.size());
   for (int64_t id : visible) {
     RltPlane* r = state.Plane(id);
     if (r == nullptr || r->groups.empty()) continue;
     if (r->groups.back() >= n - options.recent_groups) continue;
     if (CommonRecent(*r, *r, now, options.covisible_window) < options.min_common) continue;
-    if (CoveredByAGroup(state, *r, visible)) continue;
+    if (CoveredByGroups(state, *r, visible, now, options)) continue;
     Place(state, id, now, options);
   }
 }

@@ -9,6 +9,7 @@
 #include "relplane/mapper/grouping.hpp"
 #include "relplane/mapper/map_cleanup.hpp"
 #include "relplane/mapper/registration.hpp"
+#include "relplane/mapper/regrouping.hpp"
 #include "relplane/mapper/relative_map.hpp"
 
 namespace relplane::mapper {
@@ -38,6 +39,7 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   }
   const std::vector<int64_t> visible = Register(iteration, observations);  // §II.A
   UpdateGroups(state_, visible, iteration, options_.grouping);             // §II.B
+  Regroup(state_, iteration, options_);                                    // §II.F
   Compare(iteration, visible);                                             // §II.C
   BuildMaps();                                                             // §II.D
   const PoseEstimate estimate = Localise(iteration, visible);              // §II.D, §II.E
@@ -48,7 +50,9 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
     if (plane == nullptr) continue;
     plane->latest_pose = pose_;
     plane->latest_pose_known = true;
+    if (!plane->first_seen.valid) plane->first_seen = SeenFrom(plane->Latest(), pose_);
   }
+  DropOldObservations(state_, visible, iteration, options_);  // bounded memory (§II.F)
   while (!state_.poses.empty() && state_.poses.begin()->first < iteration - 2000) {
     state_.poses.erase(state_.poses.begin());
   }
@@ -120,7 +124,9 @@ void Mapper::Compare(int64_t iteration, const std::vector<int64_t>& visible) {
       Group& group = state_.groups[g];
       for (int64_t other : group.members) {
         if (other == id || !std::binary_search(visible.begin(), visible.end(), other)) continue;
-        group.dirty = true;
+        // A frozen group keeps its relative map (§II.F); the comparison still learns (static
+        // edges now, for localisation).
+        if (!group.Frozen()) group.dirty = true;
         const PairKey key = KeyOf(id, other);
         if (!done.insert(key).second) continue;
         auto it = state_.comparisons.try_emplace(key, key.first, key.second).first;

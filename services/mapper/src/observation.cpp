@@ -11,6 +11,17 @@ bool Finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
 }  // namespace
 
+SeenWall SeenFrom(const Observation& obs, const geometry::Pose2& pose) {
+  SeenWall seen;
+  seen.valid = true;
+  seen.iteration = obs.iteration;
+  seen.alpha = geometry::WrapAngle(pose.yaw + obs.Alpha());
+  seen.edge[0] = pose * obs.edge[0];
+  seen.edge[1] = pose * obs.edge[1];
+  seen.foot = pose * Eigen::Vector2d(-obs.d * obs.normal);
+  return seen;
+}
+
 std::optional<Observation> MakeObservation(const PlaneInput& input, int64_t iteration,
                                            double max_normal_z) {
   if (!Finite(input.normal) || !std::isfinite(input.d) || !Finite(input.centroid)) return {};

@@ -37,6 +37,156 @@ bool PairThrough(const Comparison& c, const RltPlane& a, int i, int* j, Vector2d
   return *weight > 0.0;
 }
 
+// The point placement of `to` from placed member `from` through their static pairing.
+bool PlacePoint(const Placement& from_placed, int64_t from, int64_t to, MapperState& state,
+                Placement* out, double* weight) {
+  if (from_placed.known != Known::kPoint) return false;
+  const Comparison* c = state.FindComparison(from, to);
+  if (c == nullptr) return false;
+  int j = -1;
+  Vector2d delta;
+  if (!PairThrough(*c, *state.Plane(from), from_placed.ref, &j, &delta, weight)) return false;
+  out->alpha = from_placed.alpha + c->DeltaAlpha(from);
+  out->point = from_placed.point + Rot(from_placed.alpha) * delta;
+  out->ref = j;
+  out->known = Known::kPoint;
+  return true;
+}
+
+// The line placement of `to`: its line steady relative to a placed edge (or parallel to a
+// placed line).
+bool PlaceLine(const Placement& p, int64_t from, int64_t to, const MapperState& state,
+               Placement* out) {
+  const Comparison* c = state.FindComparison(from, to);
+  if (c == nullptr) return false;
+  const DirectedStats& s = c->From(from);
+  const double dalpha = c->DeltaAlpha(from);
+  const bool parallel = std::abs(std::sin(dalpha)) < 0.17;
+  double offset = 0.0;
+  bool ok = p.known == Known::kPoint && s.Line(p.ref, &offset);
+  if (!ok && p.known == Known::kLine && parallel) ok = s.Line(0, &offset) || s.Line(1, &offset);
+  if (!ok) return false;
+  *out = Placement{};
+  out->alpha = p.alpha + dalpha;
+  out->point = p.point + Rot(p.alpha) * (offset * NormalOf(dalpha));
+  out->known = Known::kLine;
+  return true;
+}
+
+// The orientation of `to` only, through any comparison with a common interval.
+bool PlaceAngle(const Placement& p, int64_t from, int64_t to, const MapperState& state,
+                Placement* out) {
+  const Comparison* c = state.FindComparison(from, to);
+  if (c == nullptr || c->Common() <= 0.0) return false;
+  *out = Placement{};
+  out->alpha = p.alpha + c->DeltaAlpha(from);
+  out->point = p.point;
+  out->known = Known::kAngle;
+  return true;
+}
+
+// Members no point placement reached: by line where one is steady, else by orientation.
+// Records the links used in `order` when given.
+void PlaceRest(const Group& group, const MapperState& state, RelativeMap* map,
+               ChainOrder* order) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int64_t to : group.members) {
+      if (map->members.count(to)) continue;
+      for (const auto& [from, p] : map->members) {
+        Placement q;
+        if (!PlaceLine(p, from, to, state, &q)) continue;
+        map->members[to] = q;
+        if (order != nullptr) order->links.push_back({from, to});
+        changed = true;
+        break;
+      }
+    }
+  }
+  for (int64_t to : group.members) {
+    if (map->members.count(to)) continue;
+    for (const auto& [from, p] : map->members) {
+      Placement q;
+      if (!PlaceAngle(p, from, to, state, &q)) continue;
+      map->members[to] = q;
+      if (order != nullptr) order->links.push_back({from, to});
+      break;
+    }
+  }
+}
+
+RelativeMap StartAt(int64_t basis, int basis_ref) {
+  RelativeMap map;
+  map.basis = basis;
+  Placement p;
+  p.ref = basis_ref;
+  p.known = basis_ref >= 0 ? Known::kPoint : Known::kLine;
+  map.members[basis] = p;
+  return map;
+}
+
+// The comparison order that uses the most iterations (§II.F reordering) and the map it gives.
+RelativeMap Choose(const Group& group, MapperState& state, ChainOrder* order) {
+  const auto& members = group.members;
+  // Basis and its reference edge: the most static-pairing evidence.
+  double best = -1.0;
+  order->basis = -1;
+  order->basis_ref = -1;
+  order->links.clear();
+  for (int64_t m : members) {
+    double count[2] = {0.0, 0.0};
+    for (int64_t o : members) {
+      if (o == m) continue;
+      const Comparison* c = state.FindComparison(m, o);
+      if (c == nullptr) continue;
+      count[0] += c->From(m).PairCount(0);
+      count[1] += c->From(m).PairCount(1);
+    }
+    const double total = count[0] + count[1];
+    if (total > best) {
+      best = total;
+      order->basis = m;
+      order->basis_ref = total > 0.0 ? (count[1] > count[0] ? 1 : 0) : -1;
+    }
+  }
+  RelativeMap map = StartAt(order->basis, order->basis_ref);
+  // Prim's algorithm over static pairings: repeatedly attach the unplaced member with the
+  // strongest static pairing to a member placed with a point.
+  struct Candidate {
+    double weight = 0.0;
+    int64_t from = -1;
+    Placement placed;
+  };
+  std::map<int64_t, Candidate> candidates;
+  auto relax = [&](int64_t from) {
+    const Placement p = map.members[from];
+    for (int64_t to : members) {
+      if (map.members.count(to)) continue;
+      Candidate cand;
+      cand.from = from;
+      if (PlacePoint(p, from, to, state, &cand.placed, &cand.weight) &&
+          cand.weight > candidates[to].weight) {
+        candidates[to] = cand;
+      }
+    }
+  };
+  relax(map.basis);
+  while (true) {
+    int64_t to = -1;
+    double weight = 0.0;
+    for (const auto& [id, cand] : candidates) {
+      if (cand.weight > weight && !map.members.count(id)) to = id, weight = cand.weight;
+    }
+    if (to < 0) break;
+    map.members[to] = candidates[to].placed;
+    order->links.push_back({candidates[to].from, to});
+    candidates.erase(to);
+    relax(to);
+  }
+  PlaceRest(group, state, &map, order);
+  return map;
+}
+
 }  // namespace
 
 bool EdgePoint(const RltPlane& plane, const Placement& placement, int edge, Vector2d* point) {
@@ -55,123 +205,47 @@ bool EdgePoint(const RltPlane& plane, const Placement& placement, int edge, Vect
   return true;
 }
 
-RelativeMap BuildRelativeMap(const Group& group, MapperState& state) {
-  RelativeMap map;
-  const auto& members = group.members;
-  if (members.empty()) return map;
-  // Basis and its reference edge: the most static-pairing evidence (§II.F reordering).
-  double best = -1.0;
-  int basis_ref = -1;
-  for (int64_t m : members) {
-    double count[2] = {0.0, 0.0};
-    for (int64_t o : members) {
-      if (o == m) continue;
-      const Comparison* c = state.FindComparison(m, o);
-      if (c == nullptr) continue;
-      count[0] += c->From(m).PairCount(0);
-      count[1] += c->From(m).PairCount(1);
-    }
-    const double total = count[0] + count[1];
-    if (total > best) {
-      best = total;
-      map.basis = m;
-      basis_ref = total > 0.0 ? (count[1] > count[0] ? 1 : 0) : -1;
-    }
-  }
-  Placement basis;
-  basis.ref = basis_ref;
-  basis.known = basis_ref >= 0 ? Known::kPoint : Known::kLine;
-  map.members[map.basis] = basis;
+ChainOrder ChooseOrder(const Group& group, MapperState& state) {
+  ChainOrder order;
+  if (!group.members.empty()) Choose(group, state, &order);
+  return order;
+}
 
-  // Prim's algorithm over static pairings: repeatedly attach the unplaced member with the
-  // strongest static pairing to a member placed with a point.
-  struct Candidate {
-    double weight = 0.0;
-    int64_t from = -1;
-    int j = -1;
-    Vector2d delta = Vector2d::Zero();
-  };
-  std::map<int64_t, Candidate> candidates;
-  auto relax = [&](int64_t from) {
-    const Placement& p = map.members[from];
-    if (p.known != Known::kPoint) return;
-    const RltPlane& a = *state.Plane(from);
-    for (int64_t to : members) {
-      if (map.members.count(to)) continue;
-      const Comparison* c = state.FindComparison(from, to);
-      if (c == nullptr) continue;
-      Candidate cand;
-      cand.from = from;
-      if (PairThrough(*c, a, p.ref, &cand.j, &cand.delta, &cand.weight) &&
-          cand.weight > candidates[to].weight) {
-        candidates[to] = cand;
-      }
+RelativeMap BuildRelativeMap(const Group& group, MapperState& state) {
+  const auto& members = group.members;
+  if (members.empty()) return {};
+  // A member that joined after the order was chosen is not in it: the order is chosen afresh
+  // until the next evaluation.
+  const ChainOrder& order = group.order;
+  bool kept = order.basis >= 0;
+  for (int64_t m : members) {
+    kept = kept && (m == order.basis ||
+                    std::any_of(order.links.begin(), order.links.end(),
+                                [m](const ChainLink& link) { return link.to == m; }));
+  }
+  if (!kept) {
+    ChainOrder fresh;
+    return Choose(group, state, &fresh);
+  }
+  // §II.F: the order chosen at the reordering, with the comparisons' latest averages; a link
+  // whose static pairing has gone falls back to the line, then the orientation.
+  RelativeMap map = StartAt(order.basis, order.basis_ref);
+  for (const ChainLink& link : order.links) {
+    auto from = map.members.find(link.from);
+    if (from == map.members.end() || map.members.count(link.to) ||
+        std::find(members.begin(), members.end(), link.to) == members.end()) {
+      continue;
     }
-  };
-  relax(map.basis);
-  while (true) {
-    int64_t to = -1;
-    double weight = 0.0;
-    for (const auto& [id, cand] : candidates) {
-      if (cand.weight > weight && !map.members.count(id)) to = id, weight = cand.weight;
-    }
-    if (to < 0) break;
-    const Candidate cand = candidates[to];
-    const Placement& from = map.members[cand.from];
-    const Comparison& c = *state.FindComparison(cand.from, to);
+    const Placement p = from->second;
     Placement q;
-    q.alpha = from.alpha + c.DeltaAlpha(cand.from);
-    q.point = from.point + Rot(from.alpha) * cand.delta;
-    q.ref = cand.j;
-    q.known = Known::kPoint;
-    map.members[to] = q;
-    candidates.erase(to);
-    relax(to);
-  }
-  // Lines: a member whose line is steady relative to a placed edge (or parallel to a placed
-  // line) is placed on that line.
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (int64_t to : members) {
-      if (map.members.count(to)) continue;
-      for (const auto& [from, p] : map.members) {
-        const Comparison* c = state.FindComparison(from, to);
-        if (c == nullptr) continue;
-        const DirectedStats& s = c->From(from);
-        const double dalpha = c->DeltaAlpha(from);
-        const bool parallel = std::abs(std::sin(dalpha)) < 0.17;
-        double offset = 0.0;
-        bool ok = false;
-        if (p.known == Known::kPoint && s.Line(p.ref, &offset)) ok = true;
-        if (!ok && p.known == Known::kLine && parallel &&
-            (s.Line(0, &offset) || s.Line(1, &offset))) {
-          ok = true;
-        }
-        if (!ok) continue;
-        Placement q;
-        q.alpha = p.alpha + dalpha;
-        q.point = p.point + Rot(p.alpha) * (offset * NormalOf(dalpha));
-        q.known = Known::kLine;
-        map.members[to] = q;
-        changed = true;
-        break;
-      }
+    double weight = 0.0;
+    if (PlacePoint(p, link.from, link.to, state, &q, &weight) ||
+        PlaceLine(p, link.from, link.to, state, &q) ||
+        PlaceAngle(p, link.from, link.to, state, &q)) {
+      map.members[link.to] = q;
     }
   }
-  // Orientation only, through any comparison.
-  for (int64_t to : members) {
-    if (map.members.count(to)) continue;
-    for (const auto& [from, p] : map.members) {
-      const Comparison* c = state.FindComparison(from, to);
-      if (c == nullptr || c->Common() <= 0.0) continue;
-      Placement q;
-      q.alpha = p.alpha + c->DeltaAlpha(from);
-      q.point = p.point;
-      q.known = Known::kAngle;
-      map.members[to] = q;
-      break;
-    }
-  }
+  PlaceRest(group, state, &map, nullptr);
   return map;
 }
 

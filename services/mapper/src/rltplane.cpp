@@ -1,6 +1,7 @@
 #include "relplane/mapper/rltplane.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 namespace relplane::mapper {
 namespace {
@@ -76,11 +77,36 @@ void RltPlane::Add(Observation obs) {
   z_max_ = std::max(z_max_, obs.z_max);
   observations_.push_back(std::move(obs));
   ++count_;
-  while (observations_.size() > max_observations_) observations_.pop_front();
+  if (observations_.size() > max_observations_) {
+    DropBefore(observations_[observations_.size() - max_observations_].iteration);
+  }
+}
+
+void RltPlane::DropBefore(int64_t iteration) {
+  if (observations_.empty() || observations_.front().iteration >= iteration) return;
+  while (observations_.size() > 1 && observations_.front().iteration < iteration) {
+    observations_.pop_front();
+  }
+  const int64_t first = observations_.front().iteration;
   // Phase starts older than the stored observations are no longer needed.
-  while (phase_starts_.size() > 2 && phase_starts_[1] <= observations_.front().iteration) {
+  while (phase_starts_.size() > 2 && phase_starts_[1] <= first) {
     phase_starts_.erase(phase_starts_.begin());
   }
+  // Whole-sighting ranges before the stored observations are merged into one: it still
+  // answers "already known" for a comparison that marks an old range again, and keeps the
+  // list short on a route driven again and again.
+  std::pair<int64_t, int64_t> old{INT64_MAX, INT64_MIN};
+  std::vector<std::pair<int64_t, int64_t>> kept;
+  for (const auto& range : full_ranges_) {
+    if (range.second < first) {
+      old.first = std::min(old.first, range.first);
+      old.second = std::max(old.second, range.second);
+    } else {
+      kept.push_back(range);
+    }
+  }
+  if (old.first != INT64_MAX) kept.insert(kept.begin(), old);
+  full_ranges_ = std::move(kept);
 }
 
 size_t RltPlane::LowerBound(int64_t iteration) const {
@@ -121,7 +147,13 @@ double RltPlane::Length() const {
         ++n;
       }
     }
-    full_length_ = n > 0 ? sum / n : max_length_;
+    // With the sightings dropped (bounded memory) the mean they gave stands.
+    if (n > 0) {
+      full_length_ = sum / n;
+      full_valid_ = true;
+    } else if (!full_valid_) {
+      full_length_ = max_length_;
+    }
     full_dirty_ = false;
   }
   return full_length_;

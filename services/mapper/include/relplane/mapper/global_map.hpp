@@ -1,6 +1,6 @@
 #pragma once
 // §II.D Global map: the first group is anchored at the start pose by comparing its relative map
-// to its rltplanes' first observations; every later group is placed through the rltplanes it
+// to its rltplanes' first observations (kept with each plane as SeenWall); every later group is placed through the rltplanes it
 // shares with groups already placed (the link planes), and places its other members.
 
 #include <cstddef>
@@ -13,6 +13,8 @@ namespace relplane::mapper {
 // The placement of a wall observed as `obs` from sensor pose `pose`, with its point at edge
 // `ref` (or at the foot of the perpendicular from the sensor when ref < 0).
 Placement PlacementOf(const Observation& obs, const geometry::Pose2& pose, int ref);
+// The same for a wall seen earlier, already in the world.
+Placement PlacementOf(const SeenWall& seen, int ref);
 
 // The mapped wall's two ends (lo, hi along its direction): its static edges where known, else
 // its length from the known one; for a wall known only by its line, the extent last seen, from

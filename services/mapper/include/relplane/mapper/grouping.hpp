@@ -15,6 +15,8 @@ namespace relplane::mapper {
 
 // Iterations among the last `window` (up to `now`) in which both planes were observed.
 int CommonRecent(const RltPlane& a, const RltPlane& b, int64_t now, int window);
+// Stored observations of both planes at the same iteration, from iteration `from` on.
+int CommonSince(const RltPlane& a, const RltPlane& b, int64_t from);
 
 // One grouping step at iteration `now`. `visible` are the rltplanes observed this iteration.
 // Groups that gain members are marked dirty; timed-out ungrouped rltplanes are erased.

@@ -7,6 +7,8 @@
 #include <optional>
 #include <vector>
 
+#include "relplane/common/geometry.hpp"
+
 namespace relplane::mapper {
 
 // A plane in the sensor frame (x forward, y left, z up), as PLANES carries it.
@@ -48,6 +50,20 @@ struct Observation {
   double Alpha() const { return std::atan2(normal.x(), -normal.y()); }
   double Length() const { return (edge[1] - edge[0]).norm(); }
 };
+
+// One observation of a wall put into the world with the pose it was made from: all a later
+// placement needs of it (frame angle, both visible edges, the foot of the perpendicular from
+// the sensor), so the observation itself can be dropped (bounded memory, §II.F storage).
+struct SeenWall {
+  bool valid = false;
+  int64_t iteration = -1;
+  double alpha = 0.0;
+  Eigen::Vector2d edge[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+  Eigen::Vector2d foot = Eigen::Vector2d::Zero();
+};
+
+// `obs` as seen from sensor pose `pose` (world <- sensor).
+SeenWall SeenFrom(const Observation& obs, const geometry::Pose2& pose);
 
 // Reduces a sensor-frame plane to a wall observation. Returns nothing for a plane that is not a
 // wall (|normal.z| > max_normal_z: floor or ceiling, ignored in 2½D) or that is degenerate

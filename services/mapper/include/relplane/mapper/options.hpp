@@ -63,6 +63,18 @@ struct PoseGraphOptions {
   int max_iterations = 10;
 };
 
+// §II.F reordering and regrouping, and how far back observations are kept for them. Ages are
+// iterations since a group was made.
+struct RegroupingOptions {
+  bool enabled = true;
+  int reorder_after = 150;  // the group's comparison order is chosen and kept from then on
+  int regroup_after = 300;  // members with a comparison interval below min_interval are taken
+                            // out: placed in another group, or dropped from the map
+  int min_interval = 10;    // iterations a member must share with another one of its group
+  int freeze_after = 900;   // the relative map is frozen; observations older than this (plus
+                            // the co-visibility window) are dropped: regrouping cannot reach them
+};
+
 struct StartPose {
   double x = 0.0;
   double y = 0.0;
@@ -77,8 +89,9 @@ struct MapperOptions {
   ComparisonOptions comparison;
   LocalisationOptions localisation;
   PoseGraphOptions graph;
+  RegroupingOptions regrouping;
   StartPose start_pose;
-  int max_observations = 3000;  // per rltplane; older observations are dropped (bounded memory)
+  int max_observations = 3000;  // per rltplane, a hard cap besides the regrouping horizon
 };
 
 }  // namespace relplane::mapper

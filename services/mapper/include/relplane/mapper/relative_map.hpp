@@ -6,12 +6,16 @@
 
 namespace relplane::mapper {
 
-// Builds the relative map of `group` from the stored comparisons.
-// The basis is the member with the most static-edge comparisons, and the chain is the maximum
-// spanning tree over static pairings weighted by their common interval: the comparison order
-// that uses the most iterations (§II.F reordering), which also routes around parallel pairs
-// whose static edges are ambiguous (§II.C). Members reached through no static pairing keep
-// their line (known == kLine) or only their orientation (kAngle).
+// §II.F reordering: the comparison order that uses the most iterations. The basis is the
+// member with the most static-edge comparisons, and the chain is the maximum spanning tree over
+// static pairings weighted by their common interval (discounted by their spread), which also
+// routes around parallel pairs whose static edges are ambiguous (§II.C). Members reached
+// through no static pairing are chained by their line (known == kLine) or only their
+// orientation (kAngle).
+ChainOrder ChooseOrder(const Group& group, MapperState& state);
+
+// Builds the relative map of `group` from the stored comparisons, along `group.order` once the
+// group has been reordered, else along the order chosen now.
 RelativeMap BuildRelativeMap(const Group& group, MapperState& state);
 
 // The position of `plane`'s edge `edge` given a placement of its edge `placement.ref`, using the

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <utility>
 #include <vector>
 
 #include "relplane/common/geometry.hpp"
@@ -40,6 +41,9 @@ class RltPlane {
   // whole (both edges static at once) the mean length over those sightings.
   double Length() const;
   bool FullLengthKnown() const { return !full_ranges_.empty(); }
+  // Drops the observations before `iteration` (the latest one is always kept): what
+  // regrouping can no longer reach (§II.F storage). What was learned from them stays.
+  void DropBefore(int64_t iteration);
   // Marks iterations [first, last] as ones where both edges were static: the wall seen whole.
   void MarkFull(int64_t first, int64_t last);
   double ZMin() const { return z_min_; }
@@ -53,6 +57,10 @@ class RltPlane {
   // has forgotten that iteration (a wall known only by its line).
   geometry::Pose2 latest_pose;
   bool latest_pose_known = false;
+
+  // Its first observation, from the pose then: the first group is anchored on it (§II.D) long
+  // after the observation itself has been dropped.
+  SeenWall first_seen;
 
   // Groups this plane belongs to, in creation order (§II.B).
   std::vector<int64_t> groups;
@@ -68,6 +76,7 @@ class RltPlane {
   std::vector<std::pair<int64_t, int64_t>> full_ranges_;
   mutable double full_length_ = 0.0;  // computed lazily from full_ranges_
   mutable bool full_dirty_ = false;
+  mutable bool full_valid_ = false;  // full_length_ was computed from stored sightings
   double z_min_;
   double z_max_;
   // Growth tracking: phase starts (iteration, first of the phase), current trend and extreme.

@@ -38,19 +38,40 @@ struct RelativeMap {
   std::map<int64_t, Placement> members;
 };
 
+// §II.F the comparison order of a group: the basis, the edge its frame starts at, and which
+// placed member each other member is placed from, in placement order.
+struct ChainLink {
+  int64_t from = -1;
+  int64_t to = -1;
+};
+struct ChainOrder {
+  int64_t basis = -1;
+  int basis_ref = -1;
+  std::vector<ChainLink> links;
+};
+
+// Where a group is in §II.F: new (order chosen afresh at every build), reordered (order kept),
+// regrouped (short-interval members taken out), frozen (relative map kept, never rebuilt: its
+// members' old observations are gone).
+enum class GroupStage : int { kNew = 0, kReordered = 1, kRegrouped = 2, kFrozen = 3 };
+
 // §II.B a group of rltplanes seen in the same time interval.
 struct Group {
   int64_t id = 0;
   std::vector<int64_t> members;  // in joining order
   int64_t created = 0;           // iteration
+  GroupStage stage = GroupStage::kNew;
+  ChainOrder order;              // kept from the reordering on (§II.F)
   RelativeMap relative;
   geometry::Pose2 placement;     // world <- group frame (§II.D)
-  // The sighting of the basis the prior placement comes from: iteration and the pose then.
-  int64_t prior_iteration = -1;
-  int64_t prior_basis = -1;
-  geometry::Pose2 prior_pose;
+  // Members as seen when the group was made, from the pose then: the basis gives the prior
+  // placement, a member placed by orientation only its line. Kept so the group can be placed
+  // again after the observations are dropped.
+  std::map<int64_t, SeenWall> seen;
   bool dirty = true;
   int loop_evidence = 0;  // GroupLoopEvidence when last placed (pose_graph.hpp)
+
+  bool Frozen() const { return stage == GroupStage::kFrozen; }
 };
 
 using PairKey = std::pair<int64_t, int64_t>;
@@ -67,6 +88,8 @@ struct MapperState {
   std::map<int64_t, geometry::Pose2> poses;   // iteration -> estimated pose (recent only)
   int64_t next_id = 0;
   int64_t first_iteration = -1;
+  size_t open_from = 0;     // groups before this index are frozen (§II.F)
+  int64_t last_sweep = -1;  // iteration old observations were last dropped from every plane
   bool map_changed = false;
   int loop_evidence = 0;  // loop-closing ties seen so far (pose_graph.hpp)
   int graph_solves = 0;   // pose graph solutions run so far
