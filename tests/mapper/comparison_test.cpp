@@ -2,6 +2,7 @@
 // the sequences were built from.
 #include <gtest/gtest.h>
 
+#include "ideal_segmenter.hpp"
 #include "relplane/common/geometry.hpp"
 #include "relplane/mapper/comparison.hpp"
 #include "relplane/mapper/observation.hpp"
@@ -18,16 +19,7 @@ Observation See(const geometry::Pose2& pose, Vector2d a, Vector2d b, double s0, 
   const geometry::Pose2 inv = pose.Inverse();
   const Vector2d t = (b - a).normalized();
   const Vector2d p0 = inv * (a + s0 * t), p1 = inv * (a + s1 * t);
-  PlaneInput in;
-  Vector2d n(-(p1 - p0).y(), (p1 - p0).x());
-  n.normalize();
-  if (n.dot(p0) > 0) n = -n;
-  in.normal = Eigen::Vector3d(n.x(), n.y(), 0);
-  in.d = -n.dot(p0);
-  in.centroid = Eigen::Vector3d(0.5 * (p0 + p1).x(), 0.5 * (p0 + p1).y(), 0.0);
-  in.vertices = {{p0.x(), p0.y(), -1}, {p1.x(), p1.y(), -1}, {p1.x(), p1.y(), 1},
-                 {p0.x(), p0.y(), 1}};
-  return *MakeObservation(in, iteration, 0.3);
+  return *MakeObservation(testing::WallSeen(p0, p1), iteration, 0.3);
 }
 
 struct Pair {

@@ -35,6 +35,19 @@ bool Blocked(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
 
 }  // namespace
 
+PlaneInput WallSeen(const Vector2d& p0, const Vector2d& p1) {
+  PlaneInput in;
+  Vector2d n(-(p1 - p0).y(), (p1 - p0).x());
+  n.normalize();
+  if (n.dot(p0) > 0) n = -n;
+  in.normal = Eigen::Vector3d(n.x(), n.y(), 0);
+  in.d = -n.dot(p0);
+  in.centroid = Eigen::Vector3d(0.5 * (p0 + p1).x(), 0.5 * (p0 + p1).y(), 0);
+  in.vertices = {{p0.x(), p0.y(), -1}, {p1.x(), p1.y(), -1}, {p1.x(), p1.y(), 1},
+                 {p0.x(), p0.y(), 1}};
+  return in;
+}
+
 IdealSegmenter::IdealSegmenter(World world, Frustum frustum, Noise noise)
     : world_(std::move(world)), frustum_(frustum), noise_(noise), rng_(noise.seed) {}
 

@@ -62,6 +62,10 @@ class IdealSegmenter {
   std::mt19937_64 rng_;
 };
 
+// A wall from p0 to p1 (sensor frame, 2 m high around the sensor) as the segmenter reports
+// it, normal towards the sensor: for hand-built plane sequences.
+PlaneInput WallSeen(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1);
+
 // Poses at `rate_hz` driving straight between waypoints at `speed` and turning in place at
 // `turn_rate` at each waypoint (the first pose: the first waypoint heading to the second).
 std::vector<geometry::Pose2> Drive(const std::vector<Eigen::Vector2d>& waypoints, double speed,

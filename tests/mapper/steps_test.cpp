@@ -18,18 +18,7 @@ namespace {
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-PlaneInput Wall(Vector2d p0, Vector2d p1) {
-  PlaneInput in;
-  Vector2d n(-(p1 - p0).y(), (p1 - p0).x());
-  n.normalize();
-  if (n.dot(p0) > 0) n = -n;
-  in.normal = Vector3d(n.x(), n.y(), 0);
-  in.d = -n.dot(p0);
-  in.centroid = Vector3d(0.5 * (p0 + p1).x(), 0.5 * (p0 + p1).y(), 0);
-  in.vertices = {{p0.x(), p0.y(), -1}, {p1.x(), p1.y(), -1}, {p1.x(), p1.y(), 1},
-                 {p0.x(), p0.y(), 1}};
-  return in;
-}
+PlaneInput Wall(Vector2d p0, Vector2d p1) { return testing::WallSeen(p0, p1); }
 
 // The field of view is where cut edges pile up; one noisy edge close by must not widen it, or
 // the cut edges farther out pass for wall ends.

@@ -1,13 +1,16 @@
 // Long-run memory and time of the mapper (issue 5, "bounded memory"): drives the ideal-segmenter
 // hallway loop lap after lap for N minutes of simulated time and reports, at 1, 10 and 30
 // minutes (and every minute as progress), the process's resident memory, what the mapper holds
-// (rltplanes, stored observations, comparisons, groups) and the time per iteration (median, p99,
-// max over the last minute; includes every loop closure in that minute). Not a unit test: run by
+// (rltplanes, stored observations, comparisons, groups), the time per iteration (median, p99,
+// max over the last minute; includes every loop closure in that minute) and the pose error
+// over that minute (RMS and worst, against the driven poses): flat memory must not cost
+// accuracy. Not a unit test: run by
 // hand or from `./relplane bench`; the machine's load shows in the times, not in the memory.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -41,9 +44,24 @@ struct Sample {
   double p50_ms = 0.0;
   double p99_ms = 0.0;
   double max_ms = 0.0;
+  double rms_error_m = 0.0;
+  double max_error_m = 0.0;
 };
 
-Sample Measure(const Mapper& mapper, double minute, const std::vector<double>& window_ms) {
+// The pose errors of one minute.
+struct Errors {
+  double sum_sq = 0.0;
+  double max = 0.0;
+  size_t n = 0;
+  void Add(double e) {
+    sum_sq += e * e;
+    max = std::max(max, e);
+    ++n;
+  }
+};
+
+Sample Measure(const Mapper& mapper, double minute, const std::vector<double>& window_ms,
+               const Errors& errors) {
   const auto& state = mapper.State();
   Sample s;
   s.minute = minute;
@@ -55,14 +73,17 @@ Sample Measure(const Mapper& mapper, double minute, const std::vector<double>& w
   s.p50_ms = relplane::Percentile(window_ms, 0.5);
   s.p99_ms = relplane::Percentile(window_ms, 0.99);
   s.max_ms = window_ms.empty() ? 0.0 : *std::max_element(window_ms.begin(), window_ms.end());
+  s.rms_error_m = errors.n > 0 ? std::sqrt(errors.sum_sq / errors.n) : 0.0;
+  s.max_error_m = errors.max;
   return s;
 }
 
 void Print(const Sample& s) {
   std::printf("%6.1f min  rss %7.1f MiB  planes %6zu  observations %8zu  comparisons %7zu  "
-              "groups %6zu  ms/iteration p50 %.3f p99 %.3f max %.2f\n",
+              "groups %6zu  ms/iteration p50 %.3f p99 %.3f max %.2f  pose error rms %.3f max "
+              "%.3f m\n",
               s.minute, s.rss_mib, s.planes, s.observations, s.comparisons, s.groups, s.p50_ms,
-              s.p99_ms, s.max_ms);
+              s.p99_ms, s.max_ms, s.rms_error_m, s.max_error_m);
   std::fflush(stdout);
 }
 
@@ -76,7 +97,8 @@ void WriteJson(const std::string& path, const std::vector<Sample>& samples, bool
         << ", \"planes\": " << s.planes << ", \"observations\": " << s.observations
         << ", \"comparisons\": " << s.comparisons << ", \"groups\": " << s.groups
         << ", \"p50_ms\": " << s.p50_ms << ", \"p99_ms\": " << s.p99_ms
-        << ", \"max_ms\": " << s.max_ms << "}" << (i + 1 < samples.size() ? "," : "") << "\n";
+        << ", \"max_ms\": " << s.max_ms << ", \"rms_error_m\": " << s.rms_error_m
+        << ", \"max_error_m\": " << s.max_error_m << "}" << (i + 1 < samples.size() ? "," : "") << "\n";
   }
   out << "  ]\n}\n";
 }
@@ -107,21 +129,24 @@ int main(int argc, char** argv) {
   IdealSegmenter segmenter(world, {}, noisy ? Noise{0.003, 0.003, 0.015, 7} : Noise{});
   Mapper mapper;
   std::vector<Sample> samples;
-  samples.push_back(Measure(mapper, 0.0, {}));
+  samples.push_back(Measure(mapper, 0.0, {}, {}));
   Print(samples.back());
   std::vector<double> window_ms;
+  Errors errors;
   const int64_t per_minute = static_cast<int64_t>(60 * kRate);
   for (int64_t k = 0; k < iterations; ++k) {
     const auto planes = segmenter.Planes(poses[k]);
     const auto start = std::chrono::steady_clock::now();
-    mapper.Process(k, planes);
+    const auto estimate = mapper.Process(k, planes);
     window_ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count());
+    errors.Add((estimate.pose.Translation() - poses[k].Translation()).norm());
     if ((k + 1) % per_minute == 0 || k + 1 == iterations) {
-      samples.push_back(Measure(mapper, (k + 1) / (60 * kRate), window_ms));
+      samples.push_back(Measure(mapper, (k + 1) / (60 * kRate), window_ms, errors));
       Print(samples.back());
       window_ms.clear();
+      errors = {};
     }
   }
   if (!json.empty()) WriteJson(json, samples, noisy);

@@ -1,0 +1,245 @@
+// §II.F reordering and regrouping on hand-built plane sequences, and the bounded memory that
+// rests on it: groups frozen past the regrouping horizon, old observations dropped, the first
+// group still anchored where it was, and a loop driven again adding no groups.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ideal_segmenter.hpp"
+#include "relplane/mapper/global_map.hpp"
+#include "relplane/mapper/regrouping.hpp"
+#include "relplane/mapper/relative_map.hpp"
+
+namespace relplane::mapper {
+namespace {
+
+using Eigen::Vector2d;
+using geometry::Pose2;
+
+// The sensor drifts forward and sways, so the walls' edges move in its frame (§II.C needs
+// motion to tell static edges).
+Pose2 SensorAt(int64_t k) {
+  return {0.01 * k, 0.05 * std::sin(0.05 * k), 0.05 * std::sin(0.03 * k)};
+}
+
+// Plane `id` sees the world wall a-b at iteration k.
+void See(MapperState& state, int64_t id, int64_t k, const Vector2d& a, const Vector2d& b) {
+  const Pose2 inv = SensorAt(k).Inverse();
+  Observation obs = *MakeObservation(testing::WallSeen(inv * a, inv * b), k, 0.3);
+  auto it = state.planes.find(id);
+  if (it == state.planes.end()) {
+    state.planes.emplace(id, RltPlane(id, obs, 0.05, 3000));
+  } else {
+    it->second.Add(obs);
+  }
+}
+
+void AddGroup(MapperState& state, const std::vector<int64_t>& members, int64_t created) {
+  Group g;
+  g.id = static_cast<int64_t>(state.groups.size());
+  g.created = created;
+  g.members = members;
+  for (int64_t m : members) state.planes.at(m).groups.push_back(g.id);
+  state.groups.push_back(g);
+}
+
+void CompareMembers(MapperState& state, const Group& g, int64_t now, const MapperOptions& o) {
+  for (size_t i = 0; i < g.members.size(); ++i) {
+    for (size_t j = i + 1; j < g.members.size(); ++j) {
+      const PairKey key = KeyOf(g.members[i], g.members[j]);
+      state.comparisons.try_emplace(key, key.first, key.second)
+          .first->second.Update(state.planes.at(key.first), state.planes.at(key.second), now,
+                                o.comparison, o.registration.last_seen_window);
+    }
+  }
+}
+
+const Vector2d kA0{4, -1}, kA1{4, 1};      // across the way
+const Vector2d kB0{1, 2}, kB1{3, 2};       // on the left
+const Vector2d kC0{1.5, -2}, kC1{3.5, -2};  // on the right
+const Vector2d kE0{6, -1}, kE1{6, 1};
+const Vector2d kF0{5, 2}, kF1{6, 2};
+
+// Reordering keeps the comparison order with the longest intervals: C shares 150 iterations
+// with B and 60 with A (which joined the group first), so it is chained to B. The map along
+// that order is the world's geometry, seen from the basis.
+TEST(Regrouping, ReorderingChainsEachMemberThroughItsLongestComparison) {
+  MapperOptions options;
+  MapperState state;
+  const int64_t a = 0, b = 1, c = 2;
+  for (int64_t k = 0; k < 150; ++k) {
+    if (k < 60) See(state, a, k, kA0, kA1);
+    See(state, b, k, kB0, kB1);
+    See(state, c, k, kC0, kC1);
+  }
+  AddGroup(state, {a, b, c}, 0);
+  CompareMembers(state, state.groups[0], 149, options);
+  Regroup(state, 149, options);
+  EXPECT_EQ(state.groups[0].stage, GroupStage::kNew);
+  Regroup(state, 150, options);
+  const Group& group = state.groups[0];
+  ASSERT_EQ(group.stage, GroupStage::kReordered);
+  EXPECT_EQ(group.order.basis, b);
+  ASSERT_EQ(group.order.links.size(), 2u);
+  EXPECT_EQ(group.order.links[0].from, b);
+  EXPECT_EQ(group.order.links[0].to, c);
+  EXPECT_EQ(group.order.links[1].to, a);
+
+  const RelativeMap map = BuildRelativeMap(group, state);
+  ASSERT_EQ(map.members.size(), 3u);
+  // Edge distances and orientation differences are the world's (an independent computation:
+  // each wall's last sighting put in the world with the true pose).
+  auto world = [&](int64_t id) {
+    const RltPlane& p = state.planes.at(id);
+    return SeenFrom(p.Latest(), SensorAt(p.LastSeen()));
+  };
+  for (int64_t id : {a, c}) {
+    const Placement& p = map.members.at(id);
+    const Placement& basis = map.members.at(b);
+    ASSERT_EQ(p.known, Known::kPoint);
+    const double relative = (p.point - basis.point).norm();
+    const double truth = (world(id).edge[p.ref] - world(b).edge[basis.ref]).norm();
+    EXPECT_NEAR(relative, truth, 1e-6) << "plane " << id;
+    EXPECT_NEAR(geometry::WrapAngle(p.alpha - basis.alpha),
+                geometry::WrapAngle(world(id).alpha - world(b).alpha), 1e-9);
+  }
+}
+
+// Group 0 of planes 0 (A) and 1 (B), seen for 100 iterations, and 2 (D) seen with them for 5.
+MapperState WithAShortLivedMember(const MapperOptions& options) {
+  MapperState state;
+  for (int64_t k = 0; k < 100; ++k) {
+    See(state, 0, k, kA0, kA1);
+    See(state, 1, k, kB0, kB1);
+    if (k < 5) See(state, 2, k, kC0, kC1);
+  }
+  AddGroup(state, {0, 1, 2}, 0);
+  CompareMembers(state, state.groups[0], 99, options);
+  return state;
+}
+
+// The second evaluation: D was seen with A and B for 5 iterations only; it is taken out of
+// their group and, belonging to no other group and fitting none, dropped from the map.
+TEST(Regrouping, AMemberWithTooShortAnIntervalIsDroppedWhenNoGroupFits) {
+  MapperOptions options;
+  MapperState state = WithAShortLivedMember(options);
+  const int64_t a = 0, b = 1, d = 2;
+  state.global[d] = Placement{};
+  Regroup(state, 299, options);
+  EXPECT_EQ(state.groups[0].members.size(), 3u);  // not yet: only reordered
+  Regroup(state, 300, options);
+  EXPECT_EQ(state.groups[0].stage, GroupStage::kRegrouped);
+  EXPECT_EQ(state.groups[0].members, (std::vector<int64_t>{a, b}));
+  EXPECT_FALSE(state.planes.count(d));
+  EXPECT_FALSE(state.global.count(d));
+  EXPECT_EQ(state.FindComparison(a, d), nullptr);
+  EXPECT_NE(state.FindComparison(a, b), nullptr);
+  EXPECT_TRUE(state.groups[0].dirty);
+}
+
+// ... but when D was seen long enough with the members of a younger group, it is placed
+// there, its comparisons with them computed from the stored observations.
+TEST(Regrouping, AMemberWithTooShortAnIntervalMovesToAGroupItFits) {
+  MapperOptions options;
+  MapperState state = WithAShortLivedMember(options);
+  const int64_t a = 0, b = 1, d = 2, e = 3, f = 4;
+  for (int64_t k = 200; k < 260; ++k) {
+    See(state, d, k, kC0, kC1);
+    See(state, e, k, kE0, kE1);
+    See(state, f, k, kF0, kF1);
+  }
+  AddGroup(state, {e, f}, 200);
+  CompareMembers(state, state.groups[1], 259, options);
+  Regroup(state, 300, options);
+  EXPECT_EQ(state.groups[0].members, (std::vector<int64_t>{a, b}));
+  EXPECT_EQ(state.groups[1].members, (std::vector<int64_t>{e, f, d}));
+  EXPECT_EQ(state.planes.at(d).groups, (std::vector<int64_t>{1}));
+  ASSERT_NE(state.FindComparison(d, e), nullptr);
+  EXPECT_EQ(state.FindComparison(d, e)->Common(), 60.0);
+  EXPECT_EQ(state.groups[1].stage, GroupStage::kNew);  // 100 iterations old
+}
+
+MapperOptions ShortHorizon() {
+  MapperOptions options;
+  options.regrouping.reorder_after = 30;
+  options.regrouping.regroup_after = 60;
+  options.regrouping.freeze_after = 120;
+  return options;
+}
+
+// Driven out and back with a short regrouping horizon: groups past it are frozen, no plane
+// keeps observations regrouping cannot reach, and the map and poses stay exact.
+TEST(BoundedMemory, OldGroupsFreezeAndOldObservationsGoWithoutCostingAccuracy) {
+  testing::IdealSegmenter segmenter(testing::HallwayWithDoors(10.0), {});
+  const MapperOptions options = ShortHorizon();
+  Mapper mapper(options);
+  const auto route = testing::Drive({{0, 0}, {5, 0}, {0.5, 0}, {5, 0}}, 1.0, 0.8);
+  const testing::RunResult r = testing::Run(mapper, segmenter, route);
+  EXPECT_LT(r.ate_rmse, 0.01);
+  EXPECT_LT(r.max_error, 0.02);
+  EXPECT_LT(r.end_error, 0.01);
+  EXPECT_EQ(r.duplicates, 0);
+  const int64_t last = static_cast<int64_t>(route.size()) - 1;
+  const MapperState& state = mapper.State();
+  int frozen = 0;
+  for (const Group& g : state.groups) {
+    EXPECT_EQ(g.Frozen(), last - g.created >= options.regrouping.freeze_after) << g.id;
+    frozen += g.Frozen() ? 1 : 0;
+  }
+  EXPECT_GT(frozen, 0);
+  // Each plane: its latest observation, and none older than the horizon (plus the sweep
+  // period for planes out of view).
+  const int64_t oldest = last - ObservationHorizon(options) - 64;
+  for (const auto& [id, plane] : state.planes) {
+    if (plane.Observations().size() > 1) {
+      EXPECT_GE(plane.Observations().front().iteration, oldest) << "plane " << id;
+    }
+    EXPECT_TRUE(plane.first_seen.valid);
+  }
+}
+
+// The first group is anchored at the start pose by its planes' first sightings (§II.D); with
+// their observations and the pose history gone it is anchored at the same place.
+TEST(BoundedMemory, TheFirstGroupStaysAnchoredWhenItsObservationsAreGone) {
+  testing::IdealSegmenter segmenter(testing::StraightHallway(), {});
+  Mapper mapper;
+  const auto route = testing::Drive({{0, 0}, {4, 0}}, 1.0, 0.8);
+  for (size_t k = 0; k < route.size(); ++k) {
+    mapper.Process(static_cast<int64_t>(k), segmenter.Planes(route[k]));
+  }
+  MapperState state = mapper.State();
+  ASSERT_FALSE(state.groups.empty());
+  const Pose2 anchored = state.groups[0].placement;
+  const auto placed = state.global;
+  for (auto& [id, plane] : state.planes) plane.DropBefore(plane.LastSeen());
+  state.poses.clear();
+  state.groups[0].dirty = true;
+  BuildGlobalMap(state, 0, mapper.Options());
+  EXPECT_NEAR(state.groups[0].placement.x, anchored.x, 1e-9);
+  EXPECT_NEAR(state.groups[0].placement.y, anchored.y, 1e-9);
+  EXPECT_NEAR(state.groups[0].placement.yaw, anchored.yaw, 1e-9);
+  for (const auto& [id, p] : placed) {
+    ASSERT_TRUE(state.global.count(id)) << "plane " << id;
+    EXPECT_LT((state.global.at(id).point - p.point).norm(), 1e-9) << "plane " << id;
+  }
+}
+
+// A loop driven again and again: once every pair of planes seen together shares a group, a
+// lap adds no group (and so no memory or time per iteration).
+TEST(BoundedMemory, ALoopDrivenAgainAddsNoGroups) {
+  testing::IdealSegmenter segmenter(testing::HallwayLoop(10, 8, 2, 3), {});
+  Mapper mapper;
+  const int laps = 4;
+  const auto route = testing::Drive({{0, 0}, {8, 0}, {8, 6}, {0, 6}}, 1.0, 0.8, 30.0, laps);
+  const size_t lap = route.size() / laps;
+  size_t groups_after_two = 0;
+  for (size_t k = 0; k < route.size(); ++k) {
+    mapper.Process(static_cast<int64_t>(k), segmenter.Planes(route[k]));
+    if (k + 1 == 2 * lap) groups_after_two = mapper.State().groups.size();
+  }
+  EXPECT_GT(groups_after_two, 0u);
+  EXPECT_EQ(mapper.State().groups.size(), groups_after_two);
+}
+
+}  // namespace
+}  // namespace relplane::mapper
