@@ -97,6 +97,34 @@ TEST(EStep, RangeNoiseWidensFarPoints) {
   EXPECT_GT(r.Outlier(1), 0.9f);  // without range noise both are outliers
 }
 
+// RunEm stops refitting a converged plane and keeps its density row: evaluating only the planes
+// that moved must give the responsibilities of evaluating them all.
+TEST(EStep, ReevaluatingOnlyTheMovedPlanesGivesTheFullResult) {
+  std::mt19937 rng(11);
+  const auto floor = Patch({0.5, -2, -1}, {4, 0, 0}, {0, 4, 0}, 300, 0.01, &rng);
+  const auto wall = Patch({4.5, -2, -1}, {0, 4, 0}, {0, 0, 2.5}, 300, 0.01, &rng);
+  const Cloud c = ToCloud({floor, wall});
+  Options o;
+  o.range_noise = 0.003f;
+  std::vector<EmPlane> planes = {Perturbed({0, 0, 1}, 1.0, 0.02, 0.01),
+                                 Perturbed({1, 0, 0}, -4.5, 0.02, 0.01)};
+  Responsibilities partial, full;
+  EStep(c, planes, o, &partial);
+  planes[1] = Perturbed({1, 0, 0}, -4.5, -0.01, 0.0);  // only the wall moves
+  const std::vector<uint8_t> moved = {0, 1};
+  EStep(c, planes, o, &partial, &moved);
+  EStep(c, planes, o, &full);
+  ASSERT_EQ(partial.r.size(), full.r.size());
+  for (size_t i = 0; i < full.r.size(); ++i) ASSERT_EQ(partial.r[i], full.r[i]) << i;
+  // And an M-step that refits only the wall leaves the floor as it was, support updated.
+  std::vector<EmPlane> refitted = planes;
+  MStep(c, full, o, &refitted, &moved);
+  EXPECT_EQ(refitted[0].normal, planes[0].normal);
+  EXPECT_EQ(refitted[0].d, planes[0].d);
+  EXPECT_GT(refitted[0].support, 250.0f);
+  EXPECT_NE(refitted[1].d, planes[1].d);
+}
+
 TEST(RunEm, ConvergesToTheClosedFormFitOfOnePlaneAmongOutliers) {
   std::mt19937 rng(3);
   const auto plane = Patch({2, -1, -0.5}, {0, 2, 0.3}, {0.2, 0, 1.5}, 800, 0.005, &rng);

@@ -103,16 +103,18 @@ void RangeVariance(const Cloud& points, float range_noise, std::vector<float>* q
 }  // namespace
 
 RELPLANE_SIMD_CLONES void EStep(const Cloud& points, const std::vector<EmPlane>& planes,
-                                const Options& options, Responsibilities* resp) {
+                                const Options& options, Responsibilities* resp,
+                                const std::vector<uint8_t>* refit) {
   const float outlier_density = options.outlier_density;
-  RangeVariance(points, options.range_noise, &resp->range_variance);
-  const bool range_noise = options.range_noise > 0.0f;
-  const float* q = resp->range_variance.data();
   const int n = static_cast<int>(points.size());
   const int k = static_cast<int>(planes.size());
+  if (refit == nullptr) RangeVariance(points, options.range_noise, &resp->range_variance);
+  const bool range_noise = options.range_noise > 0.0f;
+  const float* q = resp->range_variance.data();
   resp->num_points = n;
   resp->num_planes = k;
-  resp->r.assign(static_cast<size_t>(k + 1) * n, 0.0f);
+  resp->r.resize(static_cast<size_t>(k + 1) * n);
+  resp->density.resize(static_cast<size_t>(k) * n);
   float* total = &resp->r[static_cast<size_t>(k) * n];  // the outlier row doubles as the sum
   std::fill(total, total + n, outlier_density);
   const float* __restrict x = points.x.data();
@@ -121,36 +123,40 @@ RELPLANE_SIMD_CLONES void EStep(const Cloud& points, const std::vector<EmPlane>&
   const int32_t cutoff_bits = Bits(kCutoffSigmas * kCutoffSigmas);
   const float inv_sqrt_2pi = 1.0f / std::sqrt(2.0f * static_cast<float>(M_PI));
   for (int j = 0; j < k; ++j) {
-    const EmPlane& p = planes[j];
-    const float nx = p.normal.x(), ny = p.normal.y(), nz = p.normal.z(), d = p.d;
-    const float var_j = p.sigma * p.sigma;
-    float* __restrict row = &resp->r[static_cast<size_t>(j) * n];
-    if (!range_noise) {
-      const float inv_var = 1.0f / var_j;
-      const float peak = inv_sqrt_2pi / std::sqrt(var_j);
-      for (int i = 0; i < n; ++i) {
-        const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
-        row[i] = Density(peak, dist * dist * inv_var, cutoff_bits);
-      }
-    } else {
-      for (int i = 0; i < n; ++i) {
-        const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
-        const float inv_var = 1.0f / (var_j + q[i]);
-        row[i] = Density(inv_sqrt_2pi * std::sqrt(inv_var), dist * dist * inv_var, cutoff_bits);
+    float* __restrict row = &resp->density[static_cast<size_t>(j) * n];
+    if (refit == nullptr || (*refit)[j]) {
+      const EmPlane& p = planes[j];
+      const float nx = p.normal.x(), ny = p.normal.y(), nz = p.normal.z(), d = p.d;
+      const float var_j = p.sigma * p.sigma;
+      if (!range_noise) {
+        const float inv_var = 1.0f / var_j;
+        const float peak = inv_sqrt_2pi / std::sqrt(var_j);
+        for (int i = 0; i < n; ++i) {
+          const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
+          row[i] = Density(peak, dist * dist * inv_var, cutoff_bits);
+        }
+      } else {
+        for (int i = 0; i < n; ++i) {
+          const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
+          const float inv_var = 1.0f / (var_j + q[i]);
+          row[i] = Density(inv_sqrt_2pi * std::sqrt(inv_var), dist * dist * inv_var, cutoff_bits);
+        }
       }
     }
     for (int i = 0; i < n; ++i) total[i] += row[i];
   }
   for (int i = 0; i < n; ++i) total[i] = 1.0f / total[i];
   for (int j = 0; j < k; ++j) {
+    const float* __restrict density = &resp->density[static_cast<size_t>(j) * n];
     float* __restrict row = &resp->r[static_cast<size_t>(j) * n];
-    for (int i = 0; i < n; ++i) row[i] *= total[i];
+    for (int i = 0; i < n; ++i) row[i] = density[i] * total[i];
   }
   for (int i = 0; i < n; ++i) total[i] *= outlier_density;
 }
 
 RELPLANE_SIMD_CLONES void MStep(const Cloud& points, const Responsibilities& resp,
-                                const Options& options, std::vector<EmPlane>* planes) {
+                                const Options& options, std::vector<EmPlane>* planes,
+                                const std::vector<uint8_t>* refit) {
   const int n = resp.num_points;
   const float* __restrict x = points.x.data();
   const float* __restrict y = points.y.data();
@@ -159,6 +165,13 @@ RELPLANE_SIMD_CLONES void MStep(const Cloud& points, const Responsibilities& res
   for (int j = 0; j < resp.num_planes; ++j) {
     EmPlane& plane = (*planes)[j];
     const float* __restrict r = &resp.r[static_cast<size_t>(j) * n];
+    if (refit != nullptr && !(*refit)[j]) {  // a converged plane: its support only
+      const int whole = n / kLanes * kLanes;
+      double support = Sum(r, whole);
+      for (int i = whole; i < n; ++i) support += r[i];
+      plane.support = static_cast<float>(support);
+      continue;
+    }
     // Heteroscedastic weights: a point's responsibility scaled by its precision relative to
     // the plane's own noise, so noisy far points count less (equal weights without range
     // noise). Weights below kMinWeight count as zero.
@@ -218,24 +231,34 @@ RELPLANE_SIMD_CLONES void MStep(const Cloud& points, const Responsibilities& res
 
 int RunEm(const Cloud& points, const Options& options, int max_iterations,
           std::vector<EmPlane>* planes, Responsibilities* resp) {
+  // A plane that moved less than the convergence limits in one iteration is frozen for the rest
+  // of the run: its density row is kept and it is not refitted, so the iterations that a few
+  // slow planes still need cost only what those planes cost.
+  std::vector<uint8_t> active(planes->size(), 1);
   int iteration = 0;
+  bool first = true;
   while (iteration < max_iterations) {
     const std::vector<EmPlane> before = *planes;
-    EStep(points, *planes, options, resp);
-    MStep(points, *resp, options, planes);
+    EStep(points, *planes, options, resp, first ? nullptr : &active);
+    first = false;
+    MStep(points, *resp, options, planes, &active);
     ++iteration;
     bool moved = false;
-    for (size_t j = 0; j < planes->size() && !moved; ++j) {
+    for (size_t j = 0; j < planes->size(); ++j) {
+      if (!active[j]) continue;
       // The sine from the cross product: acos of a float dot product cannot resolve angles
       // below about 3e-4 rad, so EM would never see itself converge.
       const float sin_angle = before[j].normal.cross((*planes)[j].normal).norm();
-      moved = sin_angle > options.converged_angle ||
-              std::fabs(before[j].d - (*planes)[j].d) > options.converged_offset;
+      active[j] = sin_angle > options.converged_angle ||
+                  std::fabs(before[j].d - (*planes)[j].d) > options.converged_offset;
+      moved = moved || active[j];
     }
-    if (!moved) break;
+    // Converged: the last E-step's responsibilities belong to planes that have since moved by
+    // less than the limits, so they stand for the final planes.
+    if (!moved) return iteration;
   }
-  // Leave responsibilities that belong to the planes as they are now.
-  EStep(points, *planes, options, resp);
+  // Out of iterations: responsibilities of the planes as they are now.
+  EStep(points, *planes, options, resp, first ? nullptr : &active);
   return iteration;
 }
 

@@ -17,13 +17,6 @@ int32_t Find(std::vector<int32_t>* parent, int32_t c) {
   return c;
 }
 
-void Union(std::vector<int32_t>* parent, int32_t a, int32_t b) {
-  a = Find(parent, a);
-  b = Find(parent, b);
-  if (a == b) return;
-  if (a < b) std::swap(a, b);
-  (*parent)[a] = b;  // the earlier cell is the root
-}
 
 // Reach of a cell in cells: cell_reach, or reach_spacings expected sample spacings at the
 // range of the cell's centre on its plane, at most max_reach.
@@ -171,9 +164,16 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     const int iy = std::min(f.h1, static_cast<int>((pb[i] - f.b_lo) * f.inv_cell));
     cell_of[i] = static_cast<int32_t>(f.base + static_cast<int64_t>(iy) * f.w + ix);
   }
-  // Third pass: slots become cells, numbered in order of first appearance.
+  // Third pass: slots become cells, numbered in order of first appearance, and each cell
+  // counts its points, its solid ones and those that enter the fits (one in `stride`).
   int32_t* __restrict slot_of = w->slot_of.data();
-  for (size_t i = 0; i < n; ++i) {
+  const bool all_solid = ambiguous.empty();
+  const uint8_t* amb = all_solid ? nullptr : ambiguous.data();
+  const size_t stride = FitStride(n, options);
+  w->counts.clear();
+  std::vector<int32_t>& fit_start = w->fit_start;
+  fit_start.clear();
+  for (size_t i = 0, phase = 0; i < n; ++i, phase = phase + 1 == stride ? 0 : phase + 1) {
     const int32_t s = cell_of[i];
     if (s < 0) continue;
     int32_t c = slot_of[s];
@@ -182,46 +182,49 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
       const int local = static_cast<int>(s - frames[l].base);
       c = slot_of[s] = static_cast<int32_t>(w->cells.size());
       w->cells.push_back(Cell{l, local % frames[l].w, local / frames[l].w});
+      w->counts.emplace_back();
+      fit_start.push_back(0);
     }
     cell_of[i] = c;
+    CellCount& count = w->counts[c];
+    ++count.count;
+    count.solid += all_solid || !amb[i];
+    fit_start[c] += phase == 0;
   }
-  // Fourth pass: counts and moments per cell. A run of points in one cell (common in an
-  // organized cloud) accumulates in registers, not through memory.
-  w->counts.assign(w->cells.size(), CellCount{});
-  w->moments.assign(w->cells.size(), CellMoments{});
-  CellCount* counts = w->counts.data();
-  CellMoments* moments = w->moments.data();
-  const bool all_solid = ambiguous.empty();
-  const uint8_t* amb = all_solid ? nullptr : ambiguous.data();
-  const size_t stride = FitStride(n, options);
-  int32_t current = -1;
-  CellCount run_count;
-  CellMoments run;
-  for (size_t i = 0, phase = 0; i < n; ++i, phase = phase + 1 == stride ? 0 : phase + 1) {
-    const int32_t c = cell_of[i];
-    if (c < 0) continue;
-    if (c != current) {
-      if (current >= 0) {
-        counts[current] = run_count;
-        moments[current] = run;
-      }
-      current = c;
-      run_count = counts[c];
-      run = moments[c];
+  // Fourth pass: the fitted points grouped by cell (a counting sort, cloud order kept within a
+  // cell), then each cell's moments accumulated in registers: the same sums, in the same order,
+  // as adding the points in cloud order.
+  const size_t num_cells = w->cells.size();
+  int32_t total = 0;
+  for (size_t c = 0; c < num_cells; ++c) {
+    const int32_t m = fit_start[c];
+    fit_start[c] = total;
+    total += m;
+  }
+  fit_start.push_back(total);
+  std::vector<int32_t>& order = w->fit_order;
+  order.resize(total);
+  {
+    std::vector<int32_t>& next = w->parent;  // scratch: the next free place of each cell
+    next.assign(fit_start.begin(), fit_start.end() - 1);
+    for (size_t i = 0; i < n; i += stride) {
+      const int32_t c = cell_of[i];
+      if (c >= 0) order[next[c]++] = static_cast<int32_t>(i);
     }
-    ++run_count.count;
-    run_count.solid += all_solid || !amb[i];
-    if (phase != 0) continue;
-    const PlaneGrid& g = w->grids[label[i]];
-    const Eigen::Vector3f p(x[i], y[i], z[i]);
-    const float e = g.n.dot(p - g.origin);
-    run.e_lo = std::min(run.e_lo, e);
-    run.e_hi = std::max(run.e_hi, e);
-    run.all.Add(p);
   }
-  if (current >= 0) {
-    counts[current] = run_count;
-    moments[current] = run;
+  w->moments.resize(num_cells);
+  for (size_t c = 0; c < num_cells; ++c) {
+    const PlaneGrid& g = w->grids[w->cells[c].plane];
+    CellMoments m;
+    for (int32_t k = fit_start[c]; k < fit_start[c + 1]; ++k) {
+      const int32_t i = order[k];
+      const Eigen::Vector3f p(x[i], y[i], z[i]);
+      const float e = g.n.dot(p - g.origin);
+      m.e_lo = std::min(m.e_lo, e);
+      m.e_hi = std::max(m.e_hi, e);
+      m.all.Add(p);
+    }
+    w->moments[c] = m;
   }
 }
 
@@ -240,6 +243,8 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
   }
   // Two cells connect when each lies within the other's reach; the earlier of the two in the
   // grid's row order finds the later one in the half of its neighbourhood that follows it.
+  // The root of c is kept at hand: most neighbours already share it (one load and compare).
+  std::vector<int32_t>& parent = w->parent;
   for (int32_t c = 0; c < num_cells; ++c) {
     if (reach[c] == 0) continue;
     const Cell& cell = cells[c];
@@ -247,13 +252,23 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
     const int r = reach[c];
     const int y1 = std::min(g.h - 1, cell.iy + r);
     const int x0 = std::max(0, cell.ix - r), x1 = std::min(g.w - 1, cell.ix + r);
+    int32_t root = Find(&parent, c);
     for (int yy = cell.iy; yy <= y1; ++yy) {
       const int32_t* row = &w->slot_of[g.base + static_cast<size_t>(yy) * g.w];
       for (int xx = yy == cell.iy ? cell.ix + 1 : x0; xx <= x1; ++xx) {
         const int32_t other = row[xx];
-        if (other < 0 || reach[other] == 0) continue;
+        if (other < 0 || parent[other] == root || reach[other] == 0) continue;
         const int dist = std::max(yy - cell.iy, std::abs(xx - cell.ix));
-        if (dist <= reach[other]) Union(&w->parent, c, other);
+        if (dist > reach[other]) continue;
+        const int32_t other_root = Find(&parent, other);
+        if (other_root == root) continue;
+        // The earlier cell is the root.
+        if (other_root < root) {
+          parent[root] = other_root;
+          root = other_root;
+        } else {
+          parent[other_root] = root;
+        }
       }
     }
   }

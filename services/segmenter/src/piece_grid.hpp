@@ -65,6 +65,8 @@ struct PieceWorkspace::Buffers {
   std::vector<Cell> cells;                  // in order of first appearance
   std::vector<CellCount> counts;            // per cell
   std::vector<CellMoments> moments;         // per cell
+  std::vector<int32_t> fit_start;           // per cell and one more: where its points start in
+  std::vector<int32_t> fit_order;           // the indices of the points that enter the fits
   std::vector<CellFinish> finish;           // per cell
   std::vector<uint8_t> mode;                // per cell: what the second pass does with its points
   std::vector<PlaneGrid> grids;             // per EM plane

@@ -3,6 +3,7 @@
 // models of indoor environments", the segmenter of the paper's §III input stage).
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 #include "relplane/segmenter/cloud.hpp"
@@ -27,6 +28,7 @@ struct Responsibilities {
   int num_planes = 0;
   std::vector<float> r;
   std::vector<float> range_variance;  // per point: (range_noise * range^2)^2
+  std::vector<float> density;         // per plane and point, before normalising: d[j * n + i]
 
   float At(int plane, int point) const {
     return r[static_cast<size_t>(plane) * num_points + point];
@@ -36,18 +38,22 @@ struct Responsibilities {
 
 // E-step: each point's responsibility for plane j is the Gaussian density of its distance to
 // j (variance sigma_j^2 plus the range noise), normalised over all planes and the constant
-// outlier density.
+// outlier density. With `refit`, only the planes flagged in it are evaluated: the others, and
+// the points, are those of the previous call on `resp`, whose densities are reused.
 void EStep(const Cloud& points, const std::vector<EmPlane>& planes, const Options& options,
-           Responsibilities* resp);
+           Responsibilities* resp, const std::vector<uint8_t>* refit = nullptr);
 
 // M-step: each plane becomes the weighted least-squares fit of the points — weighted mean and
 // the smallest eigenvector of the weighted scatter — and its sigma the weighted RMS distance,
-// clamped to [sigma_min, sigma_max]. A plane's normal keeps its previous orientation.
+// clamped to [sigma_min, sigma_max]. A plane's normal keeps its previous orientation. With
+// `refit`, the planes not flagged in it keep their fit and only get their support.
 void MStep(const Cloud& points, const Responsibilities& resp, const Options& options,
-           std::vector<EmPlane>* planes);
+           std::vector<EmPlane>* planes, const std::vector<uint8_t>* refit = nullptr);
 
 // Alternates E and M steps until the planes stop moving or `max_iterations`; returns the
-// iterations run. `resp` holds the responsibilities of the final planes.
+// iterations run. A plane that has stopped moving is no longer refitted. `resp` holds the
+// responsibilities of the final planes (of the last E-step when EM converged: the planes have
+// moved by less than options.converged_angle / converged_offset since).
 int RunEm(const Cloud& points, const Options& options, int max_iterations,
           std::vector<EmPlane>* planes, Responsibilities* resp);
 
