@@ -114,7 +114,8 @@ TEST_F(RecorderTest, BadMessagesAreRejectedWithAReason) {
   msg = testing::PoseMessage(bad);
   for (double& q : msg.orientation) q = 0.0;
   EXPECT_EQ(Feed(recorder, "SIM_TRUTH", msg, 0), FeedResult::kRejected);
-  relplane::status_t status;
+  // Every other field valid, so only the name can be the reason.
+  relplane::status_t status = testing::StatusMessage("relplane-mapper", 1, 1.0f);
   status.service = "relplane-\x1b[2Jmapper";  // a terminal escape in the name
   EXPECT_EQ(Feed(recorder, "STATUS", status, 0), FeedResult::kRejected);
   status.service = std::string(65, 'a');
