@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "relplane/mapper/relative_map.hpp"
@@ -14,6 +15,9 @@ using Eigen::Vector2d;
 
 constexpr double kOutlier = 0.3;      // m: a wall this far from its line is left out
 constexpr double kEdgeGate = 0.1;     // m: motion model snaps to a mapped end this close
+// rad: orientation sigma every wall has whatever its fit says (the map's own error), so the
+// best-fitting walls do not take all the weight.
+constexpr double kOrientationFloor = 0.001;
 constexpr double kOpen = 0.02;        // information below this (lines within ~11 degrees of
                                       // parallel) leaves a direction open
 
@@ -82,6 +86,13 @@ bool LearnedFrustum::Clipped(const Eigen::Vector2d& edge) const {
   return range > RangeLimit() - kEdgeNoise - 4 * kRangeBin;
 }
 
+double OrientationSigma(const Observation& obs) {
+  if (obs.rms <= 0.0) return 0.0;
+  if (obs.support < 3) return std::numeric_limits<double>::infinity();
+  const double spread = obs.Length() * std::sqrt(static_cast<double>(obs.support) / 12.0);
+  return spread > 0.0 ? obs.rms / spread : std::numeric_limits<double>::infinity();
+}
+
 Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& b,
                                const Eigen::Vector2d& previous, double prior_weight,
                                double min_information) {
@@ -108,8 +119,12 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
     int n = 0;
     for (size_t k = 0; k < sightings.size(); ++k) {
       if (!use[k]) continue;
+      // Weighted by how well the wall's fit fixes its orientation: a short noisy wall (a door
+      // jamb) must not turn the heading of walls metres long.
+      const double sigma = std::min(OrientationSigma(*sightings[k].obs), 1.0);
+      const double w = 1.0 / (sigma * sigma + kOrientationFloor * kOrientationFloor);
       const double d = sightings[k].world.alpha - sightings[k].obs->Alpha();
-      s += std::sin(d), c += std::cos(d), ++n;
+      s += w * std::sin(d), c += w * std::cos(d), ++n;
     }
     if (n == 0) {
       out.status = PoseStatus::kLost;

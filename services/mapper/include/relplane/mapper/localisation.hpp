@@ -65,6 +65,12 @@ class LearnedFrustum {
   double range_limit_ = std::numeric_limits<double>::infinity();
 };
 
+// The standard deviation (rad) of an observed wall's orientation from its own fit: a line
+// fitted to `support` points spread evenly over the visible length L with residual `rms` has
+// slope variance rms^2 / (support L^2 / 12). Zero for an exact fit (rms 0), infinite when there
+// are too few points to tell.
+double OrientationSigma(const Observation& obs);
+
 // Least squares a x = b for a position, with `previous` as a weak prior (weight `prior_weight`,
 // applied when the smallest information is below `min_information`). Along a direction the
 // equations leave open (walls within ~11 degrees of parallel) the previous position is kept as
@@ -74,12 +80,13 @@ Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& 
                                const Eigen::Vector2d& previous, double prior_weight,
                                double min_information);
 
-// Solves the sensor pose: yaw from the mean orientation difference, position by least squares
-// over the walls' lines (one equation each) and their static edges seen now (one more each, along
-// the wall), with `previous` as a weak prior. With a single wall, or walls that leave the position
-// underdetermined, the result is the motion model (§II.E): the wall stays where the map has it,
-// the unobserved direction keeps its previous value, and a mapped wall end seen at its predicted
-// place pins the position along the wall.
+// Solves the sensor pose: yaw from the mean orientation difference (weighted by
+// OrientationSigma, so a short noisy wall such as a door jamb does not turn the heading),
+// position by least squares over the walls' lines (one equation each) and their static edges
+// seen now (one more each, along the wall), with `previous` as a weak prior. With a single
+// wall, or walls that leave the position underdetermined, the result is the motion model
+// (§II.E): the wall stays where the map has it, the unobserved direction keeps its previous
+// value, and a mapped wall end seen at its predicted place pins the position along the wall.
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
                       const LearnedFrustum& frustum, const LocalisationOptions& options);
 

@@ -1,0 +1,91 @@
+// Localisation (§II.D) weighs each wall's orientation by how well its own fit fixes it: the
+// orientation sigma against an independent Monte Carlo line fit, and a short noisy wall (a door
+// jamb) that must not turn the heading given by long walls.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "relplane/mapper/localisation.hpp"
+
+namespace relplane::mapper {
+namespace {
+
+using Eigen::Vector2d;
+
+// A wall observation in the sensor frame: the line with normal angle `normal_angle`, offset
+// d, visible from `along0` to `along1`, fitted to `support` points with residual `rms`.
+Observation Seen(double normal_angle, double d, double along0, double along1, int support,
+                 double rms) {
+  Observation obs;
+  obs.normal = {std::cos(normal_angle), std::sin(normal_angle)};
+  obs.d = d;
+  const Vector2d foot = -d * obs.normal, t = obs.Direction();
+  obs.edge[0] = foot + along0 * t;
+  obs.edge[1] = foot + along1 * t;
+  obs.support = support;
+  obs.rms = rms;
+  return obs;
+}
+
+TEST(OrientationSigma, MatchesTheSpreadOfLeastSquaresLineFits) {
+  // Independent check: fit lines to noisy points spread evenly over 0.5 m, many times.
+  const int n = 200;
+  const double length = 0.5, noise = 0.01;
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> gauss(0.0, noise);
+  double sum2 = 0.0;
+  const int trials = 2000;
+  for (int trial = 0; trial < trials; ++trial) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int i = 0; i < n; ++i) {
+      const double x = length * (i + 0.5) / n, y = gauss(rng);
+      sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+    const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    sum2 += slope * slope;
+  }
+  const double measured = std::sqrt(sum2 / trials);
+  const Observation obs = Seen(M_PI, 2.0, -0.25, 0.25, n, noise);
+  EXPECT_NEAR(OrientationSigma(obs), measured, 0.05 * measured);
+  // An exact fit is exact; too few points say nothing.
+  EXPECT_EQ(OrientationSigma(Seen(M_PI, 2.0, -0.25, 0.25, n, 0.0)), 0.0);
+  EXPECT_TRUE(std::isinf(OrientationSigma(Seen(M_PI, 2.0, -0.25, 0.25, 2, noise))));
+}
+
+// Two long walls (a corridor's sides and its end) and a 0.1 m jamb whose noisy normal is 5
+// degrees off: the heading follows the long walls.
+TEST(Localisation, AShortNoisyWallDoesNotTurnTheHeading) {
+  const double jamb_error = 5.0 * M_PI / 180.0;
+  // Sensor at the origin facing +x; walls in the sensor frame (the map is the same frame).
+  std::vector<Observation> seen = {
+      Seen(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005),              // left wall, y = 1
+      Seen(M_PI, 4.0, -1.0, 1.0, 3000, 0.005),                   // end wall, x = 4
+      Seen(jamb_error, 1.5, -0.05, 0.05, 300, 0.005)};  // jamb, x = -1.5
+  for (Observation& obs : seen) obs.iteration = 1;
+  std::vector<Observation> mapped = seen;
+  mapped[2].normal = {1.0, 0.0};  // the jamb's true orientation on the map
+  std::vector<RltPlane> planes;
+  for (size_t k = 0; k < seen.size(); ++k) {
+    planes.emplace_back(static_cast<int64_t>(k), mapped[k], 0.05, 100);
+  }
+  std::vector<Sighting> sightings;
+  for (size_t k = 0; k < seen.size(); ++k) {
+    Placement world;
+    world.alpha = mapped[k].Alpha();
+    world.point = -mapped[k].d * mapped[k].normal;
+    world.known = Known::kLine;
+    sightings.push_back({&seen[k], &planes[k], world});
+  }
+  const PoseEstimate est = Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {});
+  // Unweighted, the jamb alone would turn the heading by a third of its error (1.7 degrees).
+  EXPECT_LT(std::abs(est.pose.yaw), 0.1 * M_PI / 180.0);
+  // Exact fits (no residual) still weigh the same: the circular mean of their differences.
+  for (Observation& obs : seen) obs.rms = 0.0;
+  const PoseEstimate exact = Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {});
+  EXPECT_NEAR(exact.pose.yaw, std::atan2(-std::sin(jamb_error), 2.0 + std::cos(jamb_error)), 1e-9);
+}
+
+}  // namespace
+}  // namespace relplane::mapper
