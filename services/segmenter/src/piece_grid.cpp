@@ -165,7 +165,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     cell_of[i] = static_cast<int32_t>(f.base + static_cast<int64_t>(iy) * f.w + ix);
   }
   // Third pass: slots become cells, numbered in order of first appearance, and each cell
-  // counts its points, its solid ones and those that enter the fits (one in `stride`).
+  // counts its points, its solid ones, and those that enter the fits (one in `stride`).
   int32_t* __restrict slot_of = w->slot_of.data();
   const bool all_solid = ambiguous.empty();
   const uint8_t* amb = all_solid ? nullptr : ambiguous.data();
@@ -173,7 +173,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   w->counts.clear();
   std::vector<int32_t>& fit_start = w->fit_start;
   fit_start.clear();
-  for (size_t i = 0, phase = 0; i < n; ++i, phase = phase + 1 == stride ? 0 : phase + 1) {
+  for (size_t i = 0; i < n; ++i) {
     const int32_t s = cell_of[i];
     if (s < 0) continue;
     int32_t c = slot_of[s];
@@ -183,18 +183,24 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
       c = slot_of[s] = static_cast<int32_t>(w->cells.size());
       w->cells.push_back(Cell{l, local % frames[l].w, local / frames[l].w});
       w->counts.emplace_back();
-      fit_start.push_back(0);
     }
     cell_of[i] = c;
     CellCount& count = w->counts[c];
     ++count.count;
-    count.solid += all_solid || !amb[i];
-    fit_start[c] += phase == 0;
+    count.solid += all_solid ? 1 : 1 - amb[i];
+  }
+  const size_t num_cells = w->cells.size();
+  if (stride == 1) {
+    for (const CellCount& count : w->counts) fit_start.push_back(count.count);
+  } else {
+    fit_start.assign(num_cells, 0);
+    for (size_t i = 0; i < n; i += stride) {
+      if (cell_of[i] >= 0) ++fit_start[cell_of[i]];
+    }
   }
   // Fourth pass: the fitted points grouped by cell (a counting sort, cloud order kept within a
   // cell), then each cell's moments accumulated in registers: the same sums, in the same order,
   // as adding the points in cloud order.
-  const size_t num_cells = w->cells.size();
   int32_t total = 0;
   for (size_t c = 0; c < num_cells; ++c) {
     const int32_t m = fit_start[c];
@@ -214,17 +220,38 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   }
   w->moments.resize(num_cells);
   for (size_t c = 0; c < num_cells; ++c) {
+    CellMoments& m = w->moments[c];
+    m = CellMoments{};
+    const int32_t begin = fit_start[c], end = fit_start[c + 1];
+    if (begin == end) continue;
     const PlaneGrid& g = w->grids[w->cells[c].plane];
-    CellMoments m;
-    for (int32_t k = fit_start[c]; k < fit_start[c + 1]; ++k) {
+    const float nx = g.n.x(), ny = g.n.y(), nz = g.n.z();
+    const float ox = g.origin.x(), oy = g.origin.y(), oz = g.origin.z();
+    // About the cell's first point, as LocalMoments::Add takes them.
+    const int32_t first = order[begin];
+    const float rx = x[first], ry = y[first], rz = z[first];
+    float e_lo = kInf, e_hi = -kInf;
+    float sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+    for (int32_t k = begin; k < end; ++k) {
       const int32_t i = order[k];
-      const Eigen::Vector3f p(x[i], y[i], z[i]);
-      const float e = g.n.dot(p - g.origin);
-      m.e_lo = std::min(m.e_lo, e);
-      m.e_hi = std::max(m.e_hi, e);
-      m.all.Add(p);
+      const float e = nx * (x[i] - ox) + ny * (y[i] - oy) + nz * (z[i] - oz);
+      e_lo = std::min(e_lo, e);
+      e_hi = std::max(e_hi, e);
+      const float px = x[i] - rx, py = y[i] - ry, pz = z[i] - rz;
+      sx += px;
+      sy += py;
+      sz += pz;
+      sxx += px * px;
+      sxy += px * py;
+      sxz += px * pz;
+      syy += py * py;
+      syz += py * pz;
+      szz += pz * pz;
     }
-    w->moments[c] = m;
+    m.e_lo = e_lo;
+    m.e_hi = e_hi;
+    m.all = LocalMoments{Eigen::Vector3f(rx, ry, rz), end - begin, sx, sy, sz,
+                         sxx, sxy, sxz, syy, syz, szz};
   }
 }
 

@@ -46,14 +46,24 @@ Fit FitIndices(const Cloud& pts, const std::vector<int>& idx) {
 }
 
 std::vector<int> Inliers(const Cloud& pts, const std::vector<int>& idx, const EmPlane& plane,
-                         float threshold, size_t stride = 1) {
+                         float threshold) {
   std::vector<int> inliers;
-  for (size_t k = 0; k < idx.size(); k += stride) {
-    const int i = idx[k];
+  for (const int i : idx) {
     const float dist = plane.normal.dot(pts.Point(i)) + plane.d;
     if (std::fabs(dist) < threshold) inliers.push_back(i);
   }
   return inliers;
+}
+
+// How many of every stride-th index are inliers (a trial's score: counted, not collected).
+size_t CountInliers(const Cloud& pts, const std::vector<int>& idx, const EmPlane& plane,
+                    float threshold, size_t stride) {
+  size_t count = 0;
+  for (size_t k = 0; k < idx.size(); k += stride) {
+    const float dist = plane.normal.dot(pts.Point(idx[k])) + plane.d;
+    count += std::fabs(dist) < threshold;
+  }
+  return count;
 }
 
 // One proposal: the best flat neighbourhood's plane, refitted to its inliers.
@@ -64,6 +74,7 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
   Fit best;
   size_t best_score = 0;
   std::vector<std::pair<float, int>> near;
+  std::vector<int> neighbours;
   for (int trial = 0; trial < options.proposal_trials; ++trial) {
     // The seed's nearest candidates (within proposal_radius): a neighbourhood that adapts to
     // the sampling density, so small faces close to the sensor still fit in one.
@@ -76,12 +87,12 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
     if (static_cast<int>(near.size()) < kMinNeighbours) continue;
     const size_t keep = std::min(near.size(), static_cast<size_t>(options.proposal_neighbours));
     std::nth_element(near.begin(), near.begin() + (keep - 1), near.end());
-    std::vector<int> neighbours(keep);
+    neighbours.resize(keep);
     for (size_t m = 0; m < keep; ++m) neighbours[m] = near[m].second;
     Fit fit = FitIndices(pts, neighbours);
     if (!fit.ok || fit.rms > options.proposal_max_rms) continue;
     const float sigma = std::clamp(fit.rms, options.sigma_min, options.sigma_max);
-    const size_t score = Inliers(pts, candidates, fit.plane, kInlierSigmas * sigma, stride).size();
+    const size_t score = CountInliers(pts, candidates, fit.plane, kInlierSigmas * sigma, stride);
     if (score > best_score) {
       best_score = score;
       best = fit;
