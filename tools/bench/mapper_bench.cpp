@@ -57,6 +57,7 @@ void BM_Iteration30VisiblePlanes(benchmark::State& state) {
   }
   state.counters["visible"] = static_cast<double>(visible) / state.iterations();
   state.counters["map"] = static_cast<double>(mapper.State().global.size());
+  state.counters["groups"] = static_cast<double>(mapper.State().groups.size());
 }
 BENCHMARK(BM_Iteration30VisiblePlanes)->Unit(benchmark::kMicrosecond)->Iterations(1000)
     ->Repetitions(5)->ReportAggregatesOnly(true);

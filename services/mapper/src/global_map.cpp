@@ -158,6 +158,8 @@ void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& 
 void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
   Group& group = state.groups[g];
   for (const auto& [id, rel] : group.relative.members) {
+    // Kept now, while the observation is there, for when this group places it.
+    if (rel.known == Known::kAngle) SeenWhenMade(state, g, id, options);
     auto it = state.global.find(id);
     // Hard chaining: the first group to place a plane wins, unless a later one knows more.
     // A later group that found the plane's other edge static adds that end to the map.
