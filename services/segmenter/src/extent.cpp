@@ -109,7 +109,7 @@ void PlanSecondPass(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces) {
     Piece& p = (*pieces)[piece];
     const Cell& cell = w->cells[s];
     const CellMoments& m = w->moments[s];
-    if (!Interior(*w, s)) w->mode[s] |= kExtremes;
+    if (w->outer[s]) w->mode[s] |= kExtremes;
     if (!WithinTrim(w->grids[cell.plane], cell, m, p)) {
       w->mode[s] |= kTrimPoints;
     }
@@ -122,8 +122,8 @@ void PlanSecondPass(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces) {
 // Second pass over the points, in cloud order, of the cells that need it: the moments of the
 // points beyond the trim of the first fit, taken out of the cell's so the final fit ignores
 // what the piece caught from a neighbouring surface; extents along each piece's own refitted axes.
-// An interior cell cannot hold an extreme point (to within a cell's rotation between the EM and the
-// piece's axes).
+// Only the outer cells (MarkOuterCells) are searched for extreme points: the others lie within
+// the extent of those to within a cell.
 void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
                    std::vector<Piece>* pieces, std::vector<int32_t>* piece_labels) {
   const float* x = cloud.x.data();
@@ -238,6 +238,7 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
     PlaneAxes(p.out.normal, p.vertical, &p.u, &p.v);
     p.trim = kTrimSigmas * std::max(p.out.rms, options.sigma_min);
   }
+  MarkOuterCells(static_cast<int>(pieces.size()), &w);
   PlanSecondPass(&w, &pieces);
   TrimAndExtend(cloud, options, &w, &pieces, piece_labels);
   std::vector<PieceStats> described;

@@ -227,31 +227,21 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     const PlaneGrid& g = w->grids[w->cells[c].plane];
     const float nx = g.n.x(), ny = g.n.y(), nz = g.n.z();
     const float ox = g.origin.x(), oy = g.origin.y(), oz = g.origin.z();
-    // About the cell's first point, as LocalMoments::Add takes them.
-    const int32_t first = order[begin];
-    const float rx = x[first], ry = y[first], rz = z[first];
+    // About the cell's first point, as LocalMoments::Add takes them; a local, so the sums stay
+    // in registers.
+    LocalMoments all;
+    all.ref = Eigen::Vector3f(x[order[begin]], y[order[begin]], z[order[begin]]);
     float e_lo = kInf, e_hi = -kInf;
-    float sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
     for (int32_t k = begin; k < end; ++k) {
       const int32_t i = order[k];
       const float e = nx * (x[i] - ox) + ny * (y[i] - oy) + nz * (z[i] - oz);
       e_lo = std::min(e_lo, e);
       e_hi = std::max(e_hi, e);
-      const float px = x[i] - rx, py = y[i] - ry, pz = z[i] - rz;
-      sx += px;
-      sy += py;
-      sz += pz;
-      sxx += px * px;
-      sxy += px * py;
-      sxz += px * pz;
-      syy += py * py;
-      syz += py * pz;
-      szz += pz * pz;
+      all.AddAboutRef(Eigen::Vector3f(x[i], y[i], z[i]));
     }
     m.e_lo = e_lo;
     m.e_hi = e_hi;
-    m.all = LocalMoments{Eigen::Vector3f(rx, ry, rz), end - begin, sx, sy, sz,
-                         sxx, sxy, sxz, syy, syz, szz};
+    m.all = all;
   }
 }
 
@@ -311,18 +301,41 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
   return pieces;
 }
 
-bool Interior(const PieceWorkspace::Buffers& w, size_t cell) {
-  const Cell& c = w.cells[cell];
-  const PlaneGrid& g = w.grids[c.plane];
-  if (c.ix == 0 || c.iy == 0 || c.ix == g.w - 1 || c.iy == g.h - 1) return false;
-  const int32_t piece = w.piece_of[cell];
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      const int32_t other = w.slot_of[g.base + static_cast<size_t>(c.iy + dy) * g.w + c.ix + dx];
-      if (other < 0 || w.piece_of[other] != piece) return false;
+void MarkOuterCells(int num_pieces, PieceWorkspace::Buffers* w) {
+  w->outer.assign(w->cells.size(), 0);
+  uint8_t* outer = w->outer.data();
+  const int32_t* slot_of = w->slot_of.data();
+  const int32_t* piece_of = w->piece_of.data();
+  // Per piece: the line (row or column, numbered across all grids) it was last seen on, and its
+  // last cell there.
+  std::vector<int64_t> line_of(num_pieces, -1);
+  std::vector<int32_t> last(num_pieces, -1);
+  std::vector<int32_t> seen;  // pieces seen on the current line
+  int64_t line = 0;
+  // Walks each line of slots (`count` of them, `step` apart from `first`) and marks the first
+  // and last cell of every piece on it.
+  auto walk = [&](size_t first, int count, size_t step) {
+    seen.clear();
+    const int32_t* slot = slot_of + first;
+    for (int k = 0; k < count; ++k, slot += step) {
+      const int32_t c = *slot;
+      if (c < 0 || piece_of[c] < 0) continue;
+      const int32_t piece = piece_of[c];
+      if (line_of[piece] != line) {
+        line_of[piece] = line;
+        seen.push_back(piece);
+        outer[c] = 1;
+      }
+      last[piece] = c;
     }
+    for (const int32_t piece : seen) outer[last[piece]] = 1;
+    ++line;
+  };
+  for (const PlaneGrid& g : w->grids) {
+    if (!g.used) continue;
+    for (int iy = 0; iy < g.h; ++iy) walk(g.base + static_cast<size_t>(iy) * g.w, g.w, 1);
+    for (int ix = 0; ix < g.w; ++ix) walk(g.base + ix, g.h, g.w);
   }
-  return true;
 }
 
 }  // namespace relplane::segmenter

@@ -73,6 +73,7 @@ struct PieceWorkspace::Buffers {
   std::vector<int32_t> piece_of;            // per cell: its piece, -1 for none
   std::vector<int32_t> parent, root_piece;  // union-find over cells
   std::vector<int> reach;                   // per cell, in cells; 0 for cells in no piece
+  std::vector<uint8_t> outer;               // per cell: first or last of its piece on a line
 };
 
 // In-plane axes: for a vertical plane u is horizontal and v points up, so the extent rectangle
@@ -98,8 +99,9 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
 int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, float angular_step,
                 PieceWorkspace::Buffers* w);
 
-// A cell whose eight neighbours belong to its piece lies inside the piece: its points cannot
-// shape the hull (to within a cell).
-bool Interior(const PieceWorkspace::Buffers& w, size_t cell);
+// Marks in `outer` the cells that are the first or last of their piece along their grid row or
+// grid column. Only their points can shape the piece's extent, to within a cell: any other cell
+// lies between two marked cells of its row and two of its column.
+void MarkOuterCells(int num_pieces, PieceWorkspace::Buffers* w);
 
 }  // namespace relplane::segmenter
