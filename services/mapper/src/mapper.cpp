@@ -80,6 +80,7 @@ std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation
       if (match[k] >= 0) taken.insert(match[k]);
     }
   }
+  MarkJumpedEnds(match, state_, pose_, &observations);  // §II.C: another end, not the wall's
   std::vector<int64_t> visible;
   for (size_t k = 0; k < observations.size(); ++k) {
     if (match[k] >= 0) {

@@ -13,6 +13,12 @@ double Overlap(double a0, double a1, double b0, double b1) {
   return std::max(0.0, std::min(a1, b1) - std::max(a0, b0)) / shorter;
 }
 
+// m: an end seen this far from where it last was is another end. Poses a few seconds apart
+// agree to centimetres and a wall end moves continuously, while a piece's door-side end lies a
+// door's width or more from the wall's.
+constexpr double kEndJump = 0.5;
+constexpr int64_t kEndMemory = 90;  // iterations an uncut end's sighting is compared against
+
 }  // namespace
 
 double MatchScore(const Observation& latest, const Observation& obs,
@@ -62,6 +68,30 @@ std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observ
     taken.insert(id);
   }
   return match;
+}
+
+void MarkJumpedEnds(const std::vector<int64_t>& match, const MapperState& state,
+                    const geometry::Pose2& pose, std::vector<Observation>* observations) {
+  for (size_t k = 0; k < observations->size(); ++k) {
+    const auto it = match[k] >= 0 ? state.planes.find(match[k]) : state.planes.end();
+    if (it == state.planes.end()) continue;
+    Observation& obs = (*observations)[k];
+    const auto& all = it->second.Observations();
+    const Eigen::Vector2d t = pose.Rotation() * obs.Direction();
+    for (int e = 0; e < 2; ++e) {
+      if (obs.cut[e]) continue;
+      // The latest uncut sighting of this end with a known pose.
+      for (size_t i = all.size(); i > 0; --i) {
+        const Observation& then = all[i - 1];
+        if (then.iteration < obs.iteration - kEndMemory) break;
+        const auto seen_from = state.poses.find(then.iteration);
+        if (then.cut[e] || seen_from == state.poses.end()) continue;
+        const Eigen::Vector2d jump = seen_from->second * then.edge[e] - pose * obs.edge[e];
+        obs.cut[e] = std::abs(t.dot(jump)) > kEndJump;
+        break;
+      }
+    }
+  }
 }
 
 }  // namespace relplane::mapper

@@ -24,4 +24,14 @@ std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observ
                                           const MapperState& state,
                                           const RegistrationOptions& options);
 
+// After matching: an end seen uncut now that lies far from where the same rltplane's end was
+// last seen uncut (both placed on the map with the poses then and now, over the last few
+// seconds) is another end, not the wall's: a wall seen whole (a door wall from across the
+// room) is later seen in pieces, and the piece continuing it has a new end at the door; or a
+// piece grows into the whole wall. Such an end is marked cut, so it never becomes the static
+// edge (§II.C) the rltplane learnt at the other place: the end mapped metres away would be
+// taken for it. `pose` is the latest estimate (one frame's motion is far below the jump).
+void MarkJumpedEnds(const std::vector<int64_t>& match, const MapperState& state,
+                    const geometry::Pose2& pose, std::vector<Observation>* observations);
+
 }  // namespace relplane::mapper
