@@ -222,12 +222,13 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
   if (piece_labels) piece_labels->assign(cloud.size(), -1);
   BinPoints(cloud, labels, ambiguous, planes, options, &w);
   std::vector<Piece> pieces(LabelPieces(planes, options, angular_step, &w));
+  const double stride = static_cast<double>(FitStride(cloud.size(), options));
   for (size_t s = 0; s < w.cells.size(); ++s) {
     if (w.piece_of[s] < 0) continue;
     Piece& p = pieces[w.piece_of[s]];
     p.plane = w.cells[s].plane;
     p.support += w.counts[s].count;
-    p.stride = static_cast<double>(FitStride(cloud.size(), options));
+    p.stride = stride;
     w.moments[s].all.AddTo(w.grids[p.plane].origin, &p.count, &p.sum, &p.sum_sq);
   }
   for (Piece& p : pieces) {

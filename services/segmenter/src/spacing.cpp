@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "simd.hpp"
+
 namespace relplane::segmenter {
 namespace {
 
@@ -14,7 +16,7 @@ constexpr float kMinCosIncidence = 0.05f;
 
 }  // namespace
 
-float EstimateAngularStep(const Cloud& sample, size_t cloud_size) {
+RELPLANE_SIMD_CLONES float EstimateAngularStep(const Cloud& sample, size_t cloud_size) {
   const size_t n = sample.size();
   if (n < static_cast<size_t>(4 * kMinCount) || cloud_size < n) return 0.0f;
   std::vector<float> ux(n), uy(n), uz(n);
