@@ -75,14 +75,26 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
   size_t best_score = 0;
   std::vector<std::pair<float, int>> near;
   std::vector<int> neighbours;
+  // The candidates' coordinates side by side, so each trial's distances are one vectorised loop.
+  const size_t m = candidates.size();
+  std::vector<float> cx(m), cy(m), cz(m), d2(m);
+  for (size_t k = 0; k < m; ++k) {
+    cx[k] = pts.x[candidates[k]];
+    cy[k] = pts.y[candidates[k]];
+    cz[k] = pts.z[candidates[k]];
+  }
   for (int trial = 0; trial < options.proposal_trials; ++trial) {
     // The seed's nearest candidates (within proposal_radius): a neighbourhood that adapts to
     // the sampling density, so small faces close to the sensor still fit in one.
-    const Eigen::Vector3f seed = pts.Point(candidates[(*rng)() % candidates.size()]);
+    const size_t seed = (*rng)() % m;
+    const float sx = cx[seed], sy = cy[seed], sz = cz[seed];
+    for (size_t k = 0; k < m; ++k) {
+      const float dx = cx[k] - sx, dy = cy[k] - sy, dz = cz[k] - sz;
+      d2[k] = dx * dx + dy * dy + dz * dz;
+    }
     near.clear();
-    for (int i : candidates) {
-      const float d2 = (pts.Point(i) - seed).squaredNorm();
-      if (d2 < radius2) near.emplace_back(d2, i);
+    for (size_t k = 0; k < m; ++k) {
+      if (d2[k] < radius2) near.emplace_back(d2[k], candidates[k]);
     }
     if (static_cast<int>(near.size()) < kMinNeighbours) continue;
     const size_t keep = std::min(near.size(), static_cast<size_t>(options.proposal_neighbours));
