@@ -129,7 +129,42 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
   const float* x = cloud.x.data();
   const float* y = cloud.y.data();
   const float* z = cloud.z.data();
+  // Point i of `cell` in a cell with a mode; `fitted`: it entered the cell's moments.
+  auto visit = [&](size_t i, int32_t cell, uint8_t mode, bool fitted) {
+    Piece& p = (*pieces)[w->piece_of[cell]];
+    CellFinish& c = w->finish[cell];
+    const Eigen::Vector3f point(x[i], y[i], z[i]);
+    const Eigen::Vector3f q = point - p.out.centroid;
+    if ((mode & kTrimPoints) && fitted && std::fabs(p.out.normal.dot(q)) > p.trim) {
+      c.beyond.AddAboutRef(point);
+    }
+    if (!(mode & kExtremes)) return;
+    const Eigen::Vector2f ab(p.u.dot(q), p.v.dot(q));
+    if (p.vertical) {
+      p.a_min = std::min(p.a_min, ab.x());
+      p.a_max = std::max(p.a_max, ab.x());
+      p.b_min = std::min(p.b_min, ab.y());
+      p.b_max = std::max(p.b_max, ab.y());
+      return;
+    }
+    if (ab.x() < c.lo_a.x()) c.lo_a = ab;
+    if (ab.x() > c.hi_a.x()) c.hi_a = ab;
+    if (ab.y() < c.lo_b.y()) c.lo_b = ab;
+    if (ab.y() > c.hi_b.y()) c.hi_b = ab;
+  };
   const size_t stride = FitStride(cloud.size(), options);
+  if (stride == 1 && piece_labels == nullptr) {
+    // Every point entered the fits and BinPoints grouped them by cell (cloud order kept within
+    // a cell): only the cells with a mode are visited.
+    for (size_t cell = 0; cell < w->cells.size(); ++cell) {
+      const uint8_t mode = w->mode[cell];
+      if (mode == 0) continue;
+      for (int32_t k = w->fit_start[cell]; k < w->fit_start[cell + 1]; ++k) {
+        visit(w->fit_order[k], static_cast<int32_t>(cell), mode, true);
+      }
+    }
+    return;
+  }
   for (size_t i = 0, phase = 0; i < cloud.size();
        ++i, phase = phase + 1 == stride ? 0 : phase + 1) {
     const int32_t cell = w->cell_of_point[i];
@@ -140,26 +175,7 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
     }
     const uint8_t mode = w->mode[cell];
     if (mode == 0 || (mode == kTrimPoints && phase != 0)) continue;
-    Piece& p = (*pieces)[w->piece_of[cell]];
-    CellFinish& c = w->finish[cell];
-    const Eigen::Vector3f point(x[i], y[i], z[i]);
-    const Eigen::Vector3f q = point - p.out.centroid;
-    if ((mode & kTrimPoints) && phase == 0 && std::fabs(p.out.normal.dot(q)) > p.trim) {
-      c.beyond.AddAboutRef(point);  // a point that entered the cell's moments
-    }
-    if (!(mode & kExtremes)) continue;
-    const Eigen::Vector2f ab(p.u.dot(q), p.v.dot(q));
-    if (p.vertical) {
-      p.a_min = std::min(p.a_min, ab.x());
-      p.a_max = std::max(p.a_max, ab.x());
-      p.b_min = std::min(p.b_min, ab.y());
-      p.b_max = std::max(p.b_max, ab.y());
-      continue;
-    }
-    if (ab.x() < c.lo_a.x()) c.lo_a = ab;
-    if (ab.x() > c.hi_a.x()) c.hi_a = ab;
-    if (ab.y() < c.lo_b.y()) c.lo_b = ab;
-    if (ab.y() > c.hi_b.y()) c.hi_b = ab;
+    visit(i, cell, mode, phase == 0);
   }
 }
 
