@@ -66,6 +66,33 @@ TEST(MapMetrics, ThreeCopiesOfOneWallAreTwoDuplicates) {
   EXPECT_EQ(Score(map).duplicates, 2);
 }
 
+TEST(MapMetrics, AWallMappedInDisjointPiecesHasFragmentsNotDuplicates) {
+  MapSnapshot map = PerfectMap();
+  // The south wall as three pieces, as rooms along it see it between partitions.
+  map.planes[0] = Wall(10, {-1, -2}, {1, -2});
+  map.planes.push_back(Wall(14, {1.1, -2}, {3, -2}));
+  map.planes.push_back(Wall(15, {3.1, -2.02}, {5, -2.02}));
+  // ... and one more plane over part of the first piece: that part mapped twice.
+  map.planes.push_back(Wall(16, {-0.5, -1.95}, {0.5, -1.95}));
+  const MapMetrics m = Score(map);
+  EXPECT_EQ(m.walls_mapped, 4);
+  EXPECT_EQ(m.fragments, 2);
+  EXPECT_EQ(m.duplicates, 1);
+  EXPECT_EQ(m.spurious, 0);
+}
+
+TEST(MapMetrics, AMappedDoorJambIsNeitherScoredNorSpurious) {
+  MapSnapshot world = Room();
+  world.planes.push_back(Wall(7, {2, -2}, {2, -1.9}));  // a 0.1 m jamb on the south wall
+  MapSnapshot map = PerfectMap();
+  map.planes.push_back(Wall(40, {2.01, -2}, {2.01, -1.9}));  // the jamb, mapped
+  map.planes.push_back(Wall(41, {3, -1.2}, {3, -1.1}));      // a jamb where there is none
+  const MapMetrics m = Score(map, world);
+  EXPECT_EQ(m.true_walls, 4);
+  EXPECT_EQ(m.on_short_walls, 1);
+  EXPECT_EQ(m.spurious_ids, std::vector<int64_t>{41});
+}
+
 TEST(MapMetrics, PlanesMatchingNoWallAreSpurious) {
   MapSnapshot map = PerfectMap();
   map.planes.push_back(Wall(30, {1, -1}, {2, 1}));        // diagonal across the room

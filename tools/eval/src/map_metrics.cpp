@@ -85,6 +85,31 @@ std::vector<PoseSample> Thinned(const std::vector<PoseSample>& poses) {
   return kept;
 }
 
+const WallLine& ById(const std::vector<WallLine>& walls, int64_t id) {
+  return *std::find_if(walls.begin(), walls.end(), [&](const WallLine& w) { return w.id == id; });
+}
+
+// The matches of one true wall beyond its best: a plane covering part of the wall that a better
+// match already covers maps that part twice (a duplicate); a plane covering only what no better
+// match covers is the wall mapped in pieces (a fragment: an outer wall seen from each room
+// between the partitions that meet it, where the sensor never sees that the pieces are one).
+void CountExtraMatches(const WallLine& truth,
+                       const std::vector<std::pair<Candidate, int64_t>>& best_first,
+                       const std::vector<WallLine>& mapped, const MatchOptions& options,
+                       MapMetrics* m) {
+  const Eigen::Vector2d dir = truth.segment.Direction();
+  for (size_t k = 1; k < best_first.size(); ++k) {
+    const auto [a0, a1] = Extent(ById(mapped, best_first[k].second).segment, dir);
+    const double needed = std::min(options.overlap_min_m, 0.5 * (a1 - a0));
+    bool covered = false;
+    for (size_t j = 0; j < k && !covered; ++j) {
+      const auto [b0, b1] = Extent(ById(mapped, best_first[j].second).segment, dir);
+      covered = std::min(a1, b1) - std::max(a0, b0) >= needed;
+    }
+    ++(covered ? m->duplicates : m->fragments);
+  }
+}
+
 }  // namespace
 
 std::vector<WallLine> WallsOf(const std::vector<PlaneRecord>& planes, int64_t* without_extent) {
@@ -175,10 +200,15 @@ MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
   const double sensor_z = SensorHeight(truth);
   std::vector<WallLine> occluders;
   std::vector<WallLine> true_walls;
+  std::vector<WallLine> short_walls;  // door jambs and the like: too short to be scored
   for (const WallLine& w : WallsOf(world.planes)) {
     if (!SpansHeight(w, sensor_z)) continue;
     occluders.push_back(w);
-    if (w.segment.Length() >= options.visibility.min_wall_length_m) true_walls.push_back(w);
+    if (w.segment.Length() >= options.visibility.min_wall_length_m) {
+      true_walls.push_back(w);
+    } else {
+      short_walls.push_back(w);
+    }
   }
   const std::vector<WallLine> mapped = WallsOf(map.planes, &m.mapped_without_extent);
   m.true_walls = static_cast<int64_t>(true_walls.size());
@@ -199,7 +229,16 @@ MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
       }
     }
     if (best < 0) {
-      if (m.has_truth) m.spurious_ids.push_back(w.id);
+      // A mapped jamb where a jamb is is not spurious, only not scored.
+      const bool on_short_wall = std::any_of(short_walls.begin(), short_walls.end(),
+                                             [&](const WallLine& s) {
+                                               return Compare(s, w, options.match).ok;
+                                             });
+      if (on_short_wall) {
+        ++m.on_short_walls;
+      } else if (m.has_truth) {
+        m.spurious_ids.push_back(w.id);
+      }
     } else {
       matches[best].push_back({best_c, w.id});
     }
@@ -235,7 +274,7 @@ MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
       endpoint_errors.push_back(wm.endpoint_error_m[0]);
       endpoint_errors.push_back(wm.endpoint_error_m[1]);
       ++m.walls_mapped;
-      m.duplicates += static_cast<int64_t>(list.size()) - 1;
+      CountExtraMatches(tw, list, mapped, options.match, &m);
     }
     wm.expected = !list.empty() || WallSeenFrom(tw, occluders, viewpoints, options.visibility);
     if (wm.expected) ++m.expected_walls;

@@ -60,8 +60,10 @@ struct MapMetrics {
   int64_t mapped_walls = 0;
   int64_t mapped_without_extent = 0;
   int64_t walls_mapped = 0;  // true walls with at least one match
-  int64_t duplicates = 0;    // extra matches beyond the first, summed over true walls
+  int64_t duplicates = 0;    // extra matches covering part of the wall a better match covers
+  int64_t fragments = 0;     // extra matches covering only parts no better match covers
   int64_t spurious = 0;      // mapped walls matching no true wall
+  int64_t on_short_walls = 0;  // mapped walls on true walls too short to score (door jambs)
   int64_t missed = 0;        // expected true walls without a match
   ErrorSummary normal_error_deg;
   ErrorSummary offset_error_m;
