@@ -261,6 +261,10 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
   // Two cells connect when each lies within the other's reach; the earlier of the two in the
   // grid's row order finds the later one in the half of its neighbourhood that follows it.
   // The root of c is kept at hand: most neighbours already share it (one load and compare).
+  // A solid cell right of c (or below it) whose reach is at least c's stands in for c along the
+  // rest of the row (or in the rows below): every cell c would join there is at least as close
+  // to it and within its reach, and it joins them itself. So an inner cell of a piece joins two
+  // neighbours instead of searching its whole reach; the pieces are the same.
   std::vector<int32_t>& parent = w->parent;
   for (int32_t c = 0; c < num_cells; ++c) {
     if (reach[c] == 0) continue;
@@ -270,22 +274,34 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
     const int y1 = std::min(g.h - 1, cell.iy + r);
     const int x0 = std::max(0, cell.ix - r), x1 = std::min(g.w - 1, cell.ix + r);
     int32_t root = Find(&parent, c);
-    for (int yy = cell.iy; yy <= y1; ++yy) {
-      const int32_t* row = &w->slot_of[g.base + static_cast<size_t>(yy) * g.w];
-      for (int xx = yy == cell.iy ? cell.ix + 1 : x0; xx <= x1; ++xx) {
-        const int32_t other = row[xx];
-        if (other < 0 || parent[other] == root || reach[other] == 0) continue;
-        const int dist = std::max(yy - cell.iy, std::abs(xx - cell.ix));
-        if (dist > reach[other]) continue;
-        const int32_t other_root = Find(&parent, other);
-        if (other_root == root) continue;
-        // The earlier cell is the root.
-        if (other_root < root) {
-          parent[root] = other_root;
-          root = other_root;
-        } else {
-          parent[other_root] = root;
-        }
+    auto join = [&](int32_t other, int dist) {
+      if (other < 0 || parent[other] == root || reach[other] == 0 || dist > reach[other]) return;
+      const int32_t other_root = Find(&parent, other);
+      if (other_root == root) return;
+      // The earlier cell is the root.
+      if (other_root < root) {
+        parent[root] = other_root;
+        root = other_root;
+      } else {
+        parent[other_root] = root;
+      }
+    };
+    const int32_t* row = &w->slot_of[g.base + static_cast<size_t>(cell.iy) * g.w];
+    const int32_t right = cell.ix + 1 < g.w ? row[cell.ix + 1] : -1;
+    if (right >= 0 && reach[right] >= r) {
+      join(right, 1);
+    } else {
+      for (int xx = cell.ix + 1; xx <= x1; ++xx) join(row[xx], xx - cell.ix);
+    }
+    const int32_t below = cell.iy + 1 < g.h ? row[g.w + cell.ix] : -1;
+    if (below >= 0 && reach[below] >= r) {
+      join(below, 1);
+      continue;
+    }
+    for (int yy = cell.iy + 1; yy <= y1; ++yy) {
+      row += g.w;
+      for (int xx = x0; xx <= x1; ++xx) {
+        join(row[xx], std::max(yy - cell.iy, std::abs(xx - cell.ix)));
       }
     }
   }
