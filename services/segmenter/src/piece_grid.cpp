@@ -131,8 +131,9 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   w->slot_of.assign(slots, -1);
   w->cells.clear();
   w->cell_of_point.resize(n);
-  // Second pass, arithmetic only: each point's slot in its plane's grid (-1 for none). The
-  // grids' parameters sit in small flat arrays; nothing is looked up at random.
+  // Second pass: each point's slot in its plane's grid; slots become cells, numbered in order of
+  // first appearance, and each cell counts its points, its solid ones, and those that enter the
+  // fits (one in `stride`). The grids' parameters sit in a small flat array.
   struct Frame {
     float a_lo, b_lo, inv_cell;
     int w1, h1, w;
@@ -153,6 +154,13 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   const int32_t* __restrict label = labels.data();
   const float* __restrict pa = w->a.data();
   const float* __restrict pb = w->b.data();
+  int32_t* __restrict slot_of = w->slot_of.data();
+  const bool all_solid = ambiguous.empty();
+  const uint8_t* amb = all_solid ? nullptr : ambiguous.data();
+  const size_t stride = FitStride(n, options);
+  w->counts.clear();
+  std::vector<int32_t>& fit_start = w->fit_start;
+  fit_start.clear();
   for (size_t i = 0; i < n; ++i) {
     const int32_t l = label[i];
     if (l < 0 || frames[l].base < 0) {
@@ -162,28 +170,13 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     const Frame& f = frames[l];
     const int ix = std::min(f.w1, static_cast<int>((pa[i] - f.a_lo) * f.inv_cell));
     const int iy = std::min(f.h1, static_cast<int>((pb[i] - f.b_lo) * f.inv_cell));
-    cell_of[i] = static_cast<int32_t>(f.base + static_cast<int64_t>(iy) * f.w + ix);
-  }
-  // Third pass: slots become cells, numbered in order of first appearance, and each cell
-  // counts its points, its solid ones, and those that enter the fits (one in `stride`).
-  int32_t* __restrict slot_of = w->slot_of.data();
-  const bool all_solid = ambiguous.empty();
-  const uint8_t* amb = all_solid ? nullptr : ambiguous.data();
-  const size_t stride = FitStride(n, options);
-  w->counts.clear();
-  std::vector<int32_t>& fit_start = w->fit_start;
-  fit_start.clear();
-  for (size_t i = 0; i < n; ++i) {
-    const int32_t s = cell_of[i];
-    if (s < 0) continue;
-    int32_t c = slot_of[s];
-    if (c < 0) {
-      const int32_t l = label[i];
-      const int local = static_cast<int>(s - frames[l].base);
-      c = slot_of[s] = static_cast<int32_t>(w->cells.size());
-      w->cells.push_back(Cell{l, local % frames[l].w, local / frames[l].w});
+    int32_t& slot = slot_of[f.base + static_cast<int64_t>(iy) * f.w + ix];
+    if (slot < 0) {
+      slot = static_cast<int32_t>(w->cells.size());
+      w->cells.push_back(Cell{l, ix, iy});
       w->counts.emplace_back();
     }
+    const int32_t c = slot;
     cell_of[i] = c;
     CellCount& count = w->counts[c];
     ++count.count;
@@ -198,7 +191,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
       if (cell_of[i] >= 0) ++fit_start[cell_of[i]];
     }
   }
-  // Fourth pass: the fitted points grouped by cell (a counting sort, cloud order kept within a
+  // Third pass: the fitted points grouped by cell (a counting sort, cloud order kept within a
   // cell), then each cell's moments accumulated in registers: the same sums, in the same order,
   // as adding the points in cloud order.
   int32_t total = 0;
