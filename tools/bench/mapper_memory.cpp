@@ -7,6 +7,7 @@
 // accuracy. Not a unit test: run by
 // hand or from `./relplane bench`; the machine's load shows in the times, not in the memory.
 #include <CLI/CLI.hpp>
+#include <malloc.h>
 
 #include <algorithm>
 #include <chrono>
@@ -37,6 +38,7 @@ double ResidentMiB() {
 struct Sample {
   double minute = 0.0;
   double rss_mib = 0.0;
+  double heap_mib = 0.0;  // bytes the allocator has handed out: what the mapper really holds
   size_t planes = 0;
   size_t observations = 0;
   size_t comparisons = 0;
@@ -66,6 +68,7 @@ Sample Measure(const Mapper& mapper, double minute, const std::vector<double>& w
   Sample s;
   s.minute = minute;
   s.rss_mib = ResidentMiB();
+  s.heap_mib = static_cast<double>(mallinfo2().uordblks) / (1024.0 * 1024.0);
   s.planes = state.planes.size();
   for (const auto& [id, plane] : state.planes) s.observations += plane.Observations().size();
   s.comparisons = state.comparisons.size();
@@ -79,11 +82,11 @@ Sample Measure(const Mapper& mapper, double minute, const std::vector<double>& w
 }
 
 void Print(const Sample& s) {
-  std::printf("%6.1f min  rss %7.1f MiB  planes %6zu  observations %8zu  comparisons %7zu  "
-              "groups %6zu  ms/iteration p50 %.3f p99 %.3f max %.2f  pose error rms %.3f max "
-              "%.3f m\n",
-              s.minute, s.rss_mib, s.planes, s.observations, s.comparisons, s.groups, s.p50_ms,
-              s.p99_ms, s.max_ms, s.rms_error_m, s.max_error_m);
+  std::printf("%6.1f min  rss %7.1f MiB  heap %7.2f MiB  planes %6zu  observations %8zu  "
+              "comparisons %7zu  groups %6zu  ms/iteration p50 %.3f p99 %.3f max %.2f  "
+              "pose error rms %.3f max %.3f m\n",
+              s.minute, s.rss_mib, s.heap_mib, s.planes, s.observations, s.comparisons, s.groups,
+              s.p50_ms, s.p99_ms, s.max_ms, s.rms_error_m, s.max_error_m);
   std::fflush(stdout);
 }
 
@@ -94,6 +97,7 @@ void WriteJson(const std::string& path, const std::vector<Sample>& samples, bool
   for (size_t i = 0; i < samples.size(); ++i) {
     const Sample& s = samples[i];
     out << "    {\"minute\": " << s.minute << ", \"rss_mib\": " << s.rss_mib
+        << ", \"heap_mib\": " << s.heap_mib
         << ", \"planes\": " << s.planes << ", \"observations\": " << s.observations
         << ", \"comparisons\": " << s.comparisons << ", \"groups\": " << s.groups
         << ", \"p50_ms\": " << s.p50_ms << ", \"p99_ms\": " << s.p99_ms

@@ -158,7 +158,7 @@ void DropOldObservations(MapperState& state, const std::vector<int64_t>& visible
     if (RltPlane* plane = state.Plane(id)) plane->DropBefore(before);
   }
   // Planes out of view keep theirs until the next sweep.
-  if (now - state.last_sweep < kSweepPeriod) return;
+  if (state.last_sweep >= 0 && now - state.last_sweep < kSweepPeriod) return;
   state.last_sweep = now;
   for (auto& [id, plane] : state.planes) plane.DropBefore(before);
 }
