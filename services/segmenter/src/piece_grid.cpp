@@ -71,26 +71,32 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   std::vector<float> a_lo(k * kLanes, kInf), a_hi(k * kLanes, -kInf);
   std::vector<float> b_lo(k * kLanes, kInf), b_hi(k * kLanes, -kInf);
   std::vector<int> count(k * kLanes, 0);
-  std::vector<float> axes(k * 9);  // origin, u, v per plane
+  std::vector<float> axes(k * 12);  // origin, u, v, n per plane
   for (size_t j = 0; j < k; ++j) {
     const PlaneGrid& g = w->grids[j];
     for (int c = 0; c < 3; ++c) {
-      axes[j * 9 + c] = g.origin[c];
-      axes[j * 9 + 3 + c] = g.u[c];
-      axes[j * 9 + 6 + c] = g.v[c];
+      axes[j * 12 + c] = g.origin[c];
+      axes[j * 12 + 3 + c] = g.u[c];
+      axes[j * 12 + 6 + c] = g.v[c];
+      axes[j * 12 + 9 + c] = g.n[c];
     }
   }
   w->a.resize(n);
   w->b.resize(n);
+  w->e.resize(n);
+  float* __restrict out_a = w->a.data();
+  float* __restrict out_b = w->b.data();
+  float* __restrict out_e = w->e.data();
   for (size_t i = 0; i < n; ++i) {
     const int32_t l = labels[i];
     if (l < 0) continue;
-    const float* g = &axes[static_cast<size_t>(l) * 9];
+    const float* g = &axes[static_cast<size_t>(l) * 12];
     const float qx = x[i] - g[0], qy = y[i] - g[1], qz = z[i] - g[2];
     const float a = g[3] * qx + g[4] * qy + g[5] * qz;
     const float b = g[6] * qx + g[7] * qy + g[8] * qz;
-    w->a[i] = a;
-    w->b[i] = b;
+    out_a[i] = a;
+    out_b[i] = b;
+    out_e[i] = g[9] * qx + g[10] * qy + g[11] * qz;
     const size_t slot = static_cast<size_t>(l) * kLanes + (i & (kLanes - 1));
     ++count[slot];
     a_lo[slot] = std::min(a_lo[slot], a);
@@ -212,14 +218,12 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     }
   }
   w->moments.resize(num_cells);
+  const float* __restrict pe = w->e.data();
   for (size_t c = 0; c < num_cells; ++c) {
     CellMoments& m = w->moments[c];
     m = CellMoments{};
     const int32_t begin = fit_start[c], end = fit_start[c + 1];
     if (begin == end) continue;
-    const PlaneGrid& g = w->grids[w->cells[c].plane];
-    const float nx = g.n.x(), ny = g.n.y(), nz = g.n.z();
-    const float ox = g.origin.x(), oy = g.origin.y(), oz = g.origin.z();
     // About the cell's first point, as LocalMoments::Add takes them; a local, so the sums stay
     // in registers.
     LocalMoments all;
@@ -227,7 +231,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     float e_lo = kInf, e_hi = -kInf;
     for (int32_t k = begin; k < end; ++k) {
       const int32_t i = order[k];
-      const float e = nx * (x[i] - ox) + ny * (y[i] - oy) + nz * (z[i] - oz);
+      const float e = pe[i];
       e_lo = std::min(e_lo, e);
       e_hi = std::max(e_hi, e);
       all.AddAboutRef(Eigen::Vector3f(x[i], y[i], z[i]));

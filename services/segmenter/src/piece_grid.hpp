@@ -60,6 +60,7 @@ struct PlaneGrid {
 
 struct PieceWorkspace::Buffers {
   std::vector<float> a, b;                  // per point: coordinates in its plane's grid
+  std::vector<float> e;                     // per point: its distance to its EM plane
   std::vector<int32_t> cell_of_point;       // per point: its cell, -1 for none
   std::vector<int32_t> slot_of;             // per grid slot (all grids): its cell, -1 if empty
   std::vector<Cell> cells;                  // in order of first appearance

@@ -13,17 +13,17 @@
 namespace relplane::segmenter {
 namespace {
 
-// NaN and inf have all exponent bits set: the largest masked exponent tells, in one
-// branch-free pass that vectorises.
+// NaN and inf have all exponent bits set: or-ing a flag per value tells, in one branch-free
+// pass that vectorises with SSE2 alone (an unsigned max would need SSE4.1).
 bool AllFinite(const std::vector<float>& v) {
   constexpr uint32_t kExponent = 0x7f800000u;
-  uint32_t largest = 0;
+  uint32_t any = 0;
   for (float f : v) {
     uint32_t bits;
     std::memcpy(&bits, &f, sizeof bits);
-    largest = std::max(largest, bits & kExponent);
+    any |= static_cast<uint32_t>((bits & kExponent) == kExponent);
   }
-  return largest != kExponent;
+  return any == 0;
 }
 
 bool AllFinite(const Cloud& in) { return AllFinite(in.x) && AllFinite(in.y) && AllFinite(in.z); }
