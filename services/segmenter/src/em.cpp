@@ -70,23 +70,35 @@ float Sum(const float* __restrict a, int n) {
   for (float v : lane) s += v;
   return s;
 }
-float Dot(const float* __restrict a, const float* __restrict b, int n) {
-  float lane[kLanes] = {};
+// The weighted moments of one block, n a multiple of kLanes, added to sums[1..10] (w, wx, wy,
+// wz, wxx, wxy, wxz, wyy, wyz, wzz): one pass over the block with kLanes partial sums each.
+// Every product is formed as (w * p) * p', so each sum is the one a separate dot product over
+// the block would give, in the same order. Inlined, so it is built for each clone of MStep.
+[[gnu::always_inline]] inline void AddBlockMoments(const float* __restrict w, const float* __restrict px,
+                     const float* __restrict py, const float* __restrict pz, int n,
+                     double* sums) {
+  float lane[10][kLanes] = {};
   for (int i = 0; i < n; i += kLanes) {
-    for (int l = 0; l < kLanes; ++l) lane[l] += a[i + l] * b[i + l];
+    for (int l = 0; l < kLanes; ++l) {
+      const float wi = w[i + l], x = px[i + l], y = py[i + l], z = pz[i + l];
+      const float wx = wi * x, wy = wi * y, wz = wi * z;
+      lane[0][l] += wi;
+      lane[1][l] += wx;
+      lane[2][l] += wy;
+      lane[3][l] += wz;
+      lane[4][l] += wx * x;
+      lane[5][l] += wx * y;
+      lane[6][l] += wx * z;
+      lane[7][l] += wy * y;
+      lane[8][l] += wy * z;
+      lane[9][l] += wz * z;
+    }
   }
-  float s = 0.0f;
-  for (float v : lane) s += v;
-  return s;
-}
-float Dot3(const float* __restrict a, const float* __restrict b, const float* __restrict c, int n) {
-  float lane[kLanes] = {};
-  for (int i = 0; i < n; i += kLanes) {
-    for (int l = 0; l < kLanes; ++l) lane[l] += a[i + l] * b[i + l] * c[i + l];
+  for (int m = 0; m < 10; ++m) {
+    float s = 0.0f;
+    for (float v : lane[m]) s += v;
+    sums[1 + m] += s;
   }
-  float s = 0.0f;
-  for (float v : lane) s += v;
-  return s;
 }
 
 void RangeVariance(const Cloud& points, float range_noise, std::vector<float>* q) {
@@ -196,16 +208,7 @@ RELPLANE_SIMD_CLONES void MStep(const Cloud& points, const Responsibilities& res
       }
       for (int i = m; i < padded; ++i) rb[i] = w[i] = px[i] = py[i] = pz[i] = 0.0f;
       sums[0] += Sum(rb, padded);
-      sums[1] += Sum(w, padded);
-      sums[2] += Dot(w, px, padded);
-      sums[3] += Dot(w, py, padded);
-      sums[4] += Dot(w, pz, padded);
-      sums[5] += Dot3(w, px, px, padded);
-      sums[6] += Dot3(w, px, py, padded);
-      sums[7] += Dot3(w, px, pz, padded);
-      sums[8] += Dot3(w, py, py, padded);
-      sums[9] += Dot3(w, py, pz, padded);
-      sums[10] += Dot3(w, pz, pz, padded);
+      AddBlockMoments(w, px, py, pz, padded, sums);
     }
     const double support = sums[0], sw = sums[1];
     plane.support = static_cast<float>(support);
