@@ -14,33 +14,22 @@ constexpr float kCrossingAngleDeg = 20.0f;
 // Points are ranked in blocks that stay in L1 cache while every plane is scored against them.
 constexpr size_t kBlock = 512;
 
-// Squared distances of all points to one plane, in units of each point's threshold.
-RELPLANE_SIMD_CLONES void Scores(size_t n, const float* __restrict x, const float* __restrict y,
-                                 const float* __restrict z, const EmPlane& plane, float t2,
-                                 const float* q, float* __restrict out) {
+// Scores all points against one plane and keeps the best and second-best plane per point, in
+// one pass. A score is the squared distance in units of the point's threshold. Masks and
+// min/max instead of branches so the loop vectorises (best <= second always holds). Inlined,
+// so it is built for each clone of AssignPoints.
+template <bool kRangeNoise>
+[[gnu::always_inline]] inline void ScoreAndRank(
+    size_t n, const float* __restrict x, const float* __restrict y, const float* __restrict z,
+    const EmPlane& plane, float t2, const float* __restrict q, int32_t id, float* __restrict b,
+    float* __restrict s2, int32_t* __restrict l, int32_t* __restrict l2) {
   const float nx = plane.normal.x(), ny = plane.normal.y(), nz = plane.normal.z(), d = plane.d;
   const float var = plane.sigma * plane.sigma;
-  if (q == nullptr) {
-    const float inv = 1.0f / (t2 * var);
-    for (size_t i = 0; i < n; ++i) {
-      const float s = nx * x[i] + ny * y[i] + nz * z[i] + d;
-      out[i] = s * s * inv;
-    }
-  } else {
-    for (size_t i = 0; i < n; ++i) {
-      const float s = nx * x[i] + ny * y[i] + nz * z[i] + d;
-      out[i] = s * s / (t2 * (var + q[i]));
-    }
-  }
-}
-
-// Keeps the best and second-best plane per point. Masks and min/max instead of branches so the
-// loop vectorises (best <= second always holds).
-RELPLANE_SIMD_CLONES void Rank(size_t n, const float* __restrict score, int32_t id,
-                               float* __restrict b, float* __restrict s2, int32_t* __restrict l,
-                               int32_t* __restrict l2) {
+  const float inv = 1.0f / (t2 * var);
   for (size_t i = 0; i < n; ++i) {
-    const float bi = b[i], si = s2[i], sc = score[i];
+    const float s = nx * x[i] + ny * y[i] + nz * z[i] + d;
+    const float sc = kRangeNoise ? s * s / (t2 * (var + q[i])) : s * s * inv;
+    const float bi = b[i], si = s2[i];
     const int32_t li = l[i], l2i = l2[i];
     const int32_t closer = -static_cast<int32_t>(sc < bi);
     const int32_t second_closer = -static_cast<int32_t>(sc < si);
@@ -74,7 +63,7 @@ RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmP
   // d^2 / (t^2 (sigma^2 + (k r^2)^2)): below 1 is an inlier, the smallest wins.
   const float t2 = options.inlier_sigmas * options.inlier_sigmas;
   const float k2 = options.range_noise * options.range_noise;
-  alignas(64) float best[kBlock], second[kBlock], score[kBlock], q[kBlock];
+  alignas(64) float best[kBlock], second[kBlock], q[kBlock];
   alignas(64) int32_t label[kBlock], second_label[kBlock];
   for (size_t start = 0; start < n; start += kBlock) {
     const size_t m = std::min(kBlock, n - start);
@@ -94,8 +83,12 @@ RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmP
       }
     }
     for (size_t j = 0; j < k; ++j) {
-      Scores(m, x, y, z, planes[j], t2, k2 > 0.0f ? q : nullptr, score);
-      Rank(m, score, static_cast<int32_t>(j), best, second, label, second_label);
+      const int32_t id = static_cast<int32_t>(j);
+      if (k2 > 0.0f) {
+        ScoreAndRank<true>(m, x, y, z, planes[j], t2, q, id, best, second, label, second_label);
+      } else {
+        ScoreAndRank<false>(m, x, y, z, planes[j], t2, q, id, best, second, label, second_label);
+      }
     }
     std::copy(label, label + m, labels->data() + start);
     if (!ambiguous) continue;

@@ -134,28 +134,32 @@ RELPLANE_SIMD_CLONES void EStep(const Cloud& points, const std::vector<EmPlane>&
   const float* __restrict z = points.z.data();
   const int32_t cutoff_bits = Bits(kCutoffSigmas * kCutoffSigmas);
   const float inv_sqrt_2pi = 1.0f / std::sqrt(2.0f * static_cast<float>(M_PI));
+  // Each row is added to the total as it is computed (a frozen plane's kept row, after).
   for (int j = 0; j < k; ++j) {
     float* __restrict row = &resp->density[static_cast<size_t>(j) * n];
-    if (refit == nullptr || (*refit)[j]) {
-      const EmPlane& p = planes[j];
-      const float nx = p.normal.x(), ny = p.normal.y(), nz = p.normal.z(), d = p.d;
-      const float var_j = p.sigma * p.sigma;
-      if (!range_noise) {
-        const float inv_var = 1.0f / var_j;
-        const float peak = inv_sqrt_2pi / std::sqrt(var_j);
-        for (int i = 0; i < n; ++i) {
-          const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
-          row[i] = Density(peak, dist * dist * inv_var, cutoff_bits);
-        }
-      } else {
-        for (int i = 0; i < n; ++i) {
-          const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
-          const float inv_var = 1.0f / (var_j + q[i]);
-          row[i] = Density(inv_sqrt_2pi * std::sqrt(inv_var), dist * dist * inv_var, cutoff_bits);
-        }
+    if (refit != nullptr && !(*refit)[j]) {
+      for (int i = 0; i < n; ++i) total[i] += row[i];
+      continue;
+    }
+    const EmPlane& p = planes[j];
+    const float nx = p.normal.x(), ny = p.normal.y(), nz = p.normal.z(), d = p.d;
+    const float var_j = p.sigma * p.sigma;
+    if (!range_noise) {
+      const float inv_var = 1.0f / var_j;
+      const float peak = inv_sqrt_2pi / std::sqrt(var_j);
+      for (int i = 0; i < n; ++i) {
+        const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
+        row[i] = Density(peak, dist * dist * inv_var, cutoff_bits);
+        total[i] += row[i];
+      }
+    } else {
+      for (int i = 0; i < n; ++i) {
+        const float dist = nx * x[i] + ny * y[i] + nz * z[i] + d;
+        const float inv_var = 1.0f / (var_j + q[i]);
+        row[i] = Density(inv_sqrt_2pi * std::sqrt(inv_var), dist * dist * inv_var, cutoff_bits);
+        total[i] += row[i];
       }
     }
-    for (int i = 0; i < n; ++i) total[i] += row[i];
   }
   for (int i = 0; i < n; ++i) total[i] = 1.0f / total[i];
   for (int j = 0; j < k; ++j) {
