@@ -70,34 +70,43 @@ float Sum(const float* __restrict a, int n) {
   for (float v : lane) s += v;
   return s;
 }
-// The weighted moments of one block, n a multiple of kLanes, added to sums[1..10] (w, wx, wy,
-// wz, wxx, wxy, wxz, wyy, wyz, wzz): one pass over the block with kLanes partial sums each.
-// Every product is formed as (w * p) * p', so each sum is the one a separate dot product over
-// the block would give, in the same order. Inlined, so it is built for each clone of MStep.
-[[gnu::always_inline]] inline void AddBlockMoments(const float* __restrict w, const float* __restrict px,
-                     const float* __restrict py, const float* __restrict pz, int n,
-                     double* sums) {
-  float lane[10][kLanes] = {};
+// The moments of one block of n points, n a multiple of kLanes, added to sums (support, w,
+// wx, wy, wz, wxx, wxy, wxz, wyy, wyz, wzz; p about the reference point): one pass with
+// kLanes partial sums each. Heteroscedastic weights: a point's responsibility scaled by its
+// precision relative to the plane's own noise var, so noisy far points count less (equal
+// weights without range noise); weights below kMinWeight count as zero. Every product is
+// formed as (w * p) * p', as separate dot products over the block would, in the same order.
+// Inlined, so it is built for each clone of MStep.
+[[gnu::always_inline]] inline void AddBlockMoments(
+    const float* __restrict r, const float* __restrict q, const float* __restrict x,
+    const float* __restrict y, const float* __restrict z, int n, const Eigen::Vector3f& ref,
+    float var, double* sums) {
+  const float rx = ref.x(), ry = ref.y(), rz = ref.z();
+  float lane[11][kLanes] = {};
   for (int i = 0; i < n; i += kLanes) {
     for (int l = 0; l < kLanes; ++l) {
-      const float wi = w[i + l], x = px[i + l], y = py[i + l], z = pz[i + l];
-      const float wx = wi * x, wy = wi * y, wz = wi * z;
-      lane[0][l] += wi;
-      lane[1][l] += wx;
-      lane[2][l] += wy;
-      lane[3][l] += wz;
-      lane[4][l] += wx * x;
-      lane[5][l] += wx * y;
-      lane[6][l] += wx * z;
-      lane[7][l] += wy * y;
-      lane[8][l] += wy * z;
-      lane[9][l] += wz * z;
+      const int g = i + l;
+      const float wr = r[g] * var / (var + q[g]);
+      const float wi = Float(Bits(wr) & -static_cast<int32_t>(wr >= kMinWeight));
+      const float px = x[g] - rx, py = y[g] - ry, pz = z[g] - rz;
+      const float wx = wi * px, wy = wi * py, wz = wi * pz;
+      lane[0][l] += r[g];
+      lane[1][l] += wi;
+      lane[2][l] += wx;
+      lane[3][l] += wy;
+      lane[4][l] += wz;
+      lane[5][l] += wx * px;
+      lane[6][l] += wx * py;
+      lane[7][l] += wx * pz;
+      lane[8][l] += wy * py;
+      lane[9][l] += wy * pz;
+      lane[10][l] += wz * pz;
     }
   }
-  for (int m = 0; m < 10; ++m) {
+  for (int m = 0; m < 11; ++m) {
     float s = 0.0f;
     for (float v : lane[m]) s += v;
-    sums[1 + m] += s;
+    sums[m] += s;
   }
 }
 
@@ -188,31 +197,30 @@ RELPLANE_SIMD_CLONES void MStep(const Cloud& points, const Responsibilities& res
       plane.support = static_cast<float>(support);
       continue;
     }
-    // Heteroscedastic weights: a point's responsibility scaled by its precision relative to
-    // the plane's own noise, so noisy far points count less (equal weights without range
-    // noise). Weights below kMinWeight count as zero.
     const float var_j = plane.sigma * plane.sigma;
     // Moments about the previous centroid (close to the new one, so the sums stay well
     // conditioned): float sums over blocks of kBlock points (vectorised), in double across
-    // blocks.
-    const float rx = plane.centroid.x(), ry = plane.centroid.y(), rz = plane.centroid.z();
-    double sums[11] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};  // support, w, wx, wy, wz, wxx, ...
-    alignas(64) float rb[kBlock], w[kBlock], px[kBlock], py[kBlock], pz[kBlock];
-    for (int start = 0; start < n; start += kBlock) {
-      const int m = std::min(kBlock, n - start);
+    // blocks. The last block is padded to whole lanes with points that add nothing (no
+    // responsibility, at the reference point).
+    double sums[11] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    const int whole = n / kBlock * kBlock;
+    for (int start = 0; start < whole; start += kBlock) {
+      AddBlockMoments(r + start, q + start, x + start, y + start, z + start, kBlock,
+                      plane.centroid, var_j, sums);
+    }
+    if (whole < n) {
+      const int m = n - whole;
       const int padded = (m + kLanes - 1) / kLanes * kLanes;
-      for (int i = 0; i < m; ++i) {
-        const int g = start + i;
-        rb[i] = r[g];
-        const float wi = r[g] * var_j / (var_j + q[g]);
-        w[i] = Float(Bits(wi) & -static_cast<int32_t>(wi >= kMinWeight));
-        px[i] = x[g] - rx;
-        py[i] = y[g] - ry;
-        pz[i] = z[g] - rz;
+      alignas(64) float rb[kBlock], qb[kBlock], xb[kBlock], yb[kBlock], zb[kBlock];
+      for (int i = 0; i < padded; ++i) {
+        const bool in = i < m;
+        rb[i] = in ? r[whole + i] : 0.0f;
+        qb[i] = in ? q[whole + i] : 0.0f;
+        xb[i] = in ? x[whole + i] : plane.centroid.x();
+        yb[i] = in ? y[whole + i] : plane.centroid.y();
+        zb[i] = in ? z[whole + i] : plane.centroid.z();
       }
-      for (int i = m; i < padded; ++i) rb[i] = w[i] = px[i] = py[i] = pz[i] = 0.0f;
-      sums[0] += Sum(rb, padded);
-      AddBlockMoments(w, px, py, pz, padded, sums);
+      AddBlockMoments(rb, qb, xb, yb, zb, padded, plane.centroid, var_j, sums);
     }
     const double support = sums[0], sw = sums[1];
     plane.support = static_cast<float>(support);
