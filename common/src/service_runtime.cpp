@@ -11,6 +11,9 @@ namespace relplane {
 namespace {
 std::atomic<bool> g_stop{false};
 void OnSignal(int) { g_stop.store(true); }
+// Under the launcher's default grace period (3 s) before SIGTERM.
+constexpr int64_t kDrainMaxUs = 1000000;
+constexpr int kDrainQuietMs = 50;  // a bus this long silent after the stop has been drained
 }  // namespace
 
 void InstallStopHandlers() {
@@ -67,6 +70,16 @@ int RunService(bus::Bus& bus, ServiceStats& stats, const std::function<bool()>& 
     if (MonotonicMicros() >= next_status) {
       PublishStatus(bus, stats);
       next_status += 1000000;
+    }
+  }
+  // What arrived before the stop belongs to the run: the launcher stops the services in
+  // pipeline order, so the MAP the mapper sent as it stopped may still wait in the logger's
+  // socket when the logger is told to stop (a replay's map.json then lagged a frame). Drain,
+  // bounded in time so a flooded bus cannot hold the stop past the launcher's grace period.
+  if (result == 0) {
+    const int64_t give_up = MonotonicMicros() + kDrainMaxUs;
+    // LCM's reader thread moves datagrams from the socket to its queue: wait briefly for each.
+    while (MonotonicMicros() < give_up && bus.Handle(kDrainQuietMs) > 0) {
     }
   }
   PublishStatus(bus, stats);
