@@ -33,19 +33,18 @@ const Observation& ObservedWithPose(const RltPlane& plane, const MapperState& st
 
 // Member `id` of group `g` as seen when the group was made (for the first group, as first
 // seen), kept in the group: the group can be placed again once the observation is dropped.
-const SeenWall& SeenWhenMade(MapperState& state, size_t g, int64_t id,
-                             const MapperOptions& options) {
+// Kept only once the pose of the group's first iteration is known: a group is built before its
+// iteration is localised, and until then the latest sighting with a known pose is an older,
+// worse one (keeping it took noise-free office from 9 mm ATE to 30 mm).
+SeenWall SeenWhenMade(MapperState& state, size_t g, int64_t id, const MapperOptions& options) {
   Group& group = state.groups[g];
-  SeenWall& seen = group.seen[id];
-  if (!seen.valid) {
-    const RltPlane& plane = *state.Plane(id);
-    if (g == 0 && plane.first_seen.valid) {
-      seen = plane.first_seen;
-    } else {
-      const Observation& obs = ObservedWithPose(plane, state, group.created, g == 0);
-      seen = SeenFrom(obs, PoseAt(state, obs.iteration, options));
-    }
-  }
+  SeenWall& kept = group.seen[id];
+  if (kept.valid) return kept;
+  const RltPlane& plane = *state.Plane(id);
+  if (g == 0 && plane.first_seen.valid) return kept = plane.first_seen;
+  const Observation& obs = ObservedWithPose(plane, state, group.created, g == 0);
+  const SeenWall seen = SeenFrom(obs, PoseAt(state, obs.iteration, options));
+  if (state.poses.count(group.created) != 0) kept = seen;
   return seen;
 }
 
