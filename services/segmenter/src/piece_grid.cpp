@@ -138,8 +138,8 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   w->cells.clear();
   w->cell_of_point.resize(n);
   // Second pass: each point's slot in its plane's grid; slots become cells, numbered in order of
-  // first appearance, and each cell counts its points, its solid ones, and those that enter the
-  // fits (one in `stride`). The grids' parameters sit in a small flat array.
+  // first appearance, and each cell counts its points and those that enter the fits (one in
+  // `stride`). The grids' parameters sit in a small flat array.
   struct Frame {
     float a_lo, b_lo, inv_cell;
     int w1, h1, w;
@@ -184,9 +184,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     }
     const int32_t c = slot;
     cell_of[i] = c;
-    CellCount& count = w->counts[c];
-    ++count.count;
-    count.solid += all_solid ? 1 : 1 - amb[i];
+    ++w->counts[c].count;
   }
   const size_t num_cells = w->cells.size();
   if (stride == 1) {
@@ -215,6 +213,21 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     for (size_t i = 0; i < n; i += stride) {
       const int32_t c = cell_of[i];
       if (c >= 0) order[next[c]++] = static_cast<int32_t>(i);
+    }
+  }
+  // Whether each cell holds a solid point. With every point fitted they are grouped by cell,
+  // and the search stops at the first solid one (nearly always the cell's first point).
+  if (all_solid) {
+    for (CellCount& count : w->counts) count.solid = 1;
+  } else if (stride == 1) {
+    for (size_t c = 0; c < num_cells; ++c) {
+      int32_t k = fit_start[c];
+      while (k < fit_start[c + 1] && amb[order[k]]) ++k;
+      w->counts[c].solid = k < fit_start[c + 1];
+    }
+  } else {
+    for (size_t i = 0; i < n; ++i) {
+      if (cell_of[i] >= 0 && !amb[i]) w->counts[cell_of[i]].solid = 1;
     }
   }
   w->moments.resize(num_cells);

@@ -17,11 +17,11 @@ namespace relplane::segmenter {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// Per occupied cell, what binning touches for every point, in a small array: how many points
-// it holds and how many of them are solid (not on the strip where two planes meet).
+// Per occupied cell, in a small array: how many points it holds and whether any of them is
+// solid (not on the strip where two planes meet).
 struct CellCount {
   int32_t count = 0;
-  int32_t solid = 0;
+  int32_t solid = 0;  // 1 or 0
 };
 
 // Per occupied cell, in one cache line, what binning touches for the points that enter the fits
@@ -87,7 +87,8 @@ size_t FitStride(size_t n, const Options& options);
 
 // Bins the points of every plane with at least options.min_points labelled points into that
 // plane's grid (coarsened until it has at most options.max_cells cells): fills grids, cells
-// (count, solid count, moments of the points that enter the fits) and cell_of_point.
+// (count, whether it holds a solid point, moments of the points that enter the fits) and
+// cell_of_point.
 void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
                const std::vector<uint8_t>& ambiguous, const std::vector<EmPlane>& planes,
                const Options& options, PieceWorkspace::Buffers* w);
