@@ -48,6 +48,40 @@ SeenWall SeenWhenMade(MapperState& state, size_t g, int64_t id, const MapperOpti
   return seen;
 }
 
+// The group's placement from one member as seen when the group was made: its sighting then
+// put back through its place in the relative map.
+Pose2 PlacementFromSighting(const SeenWall& seen, const Placement& rel) {
+  const double yaw = geometry::WrapAngle(seen.alpha - rel.alpha);
+  const Placement p = PlacementOf(seen, rel.ref);
+  const Vector2d t = p.point - Eigen::Rotation2Dd(yaw) * rel.point;
+  return {t.x(), t.y(), yaw};
+}
+
+// Prior for group `g`: the basis as seen when the group was made, unless the view cut its
+// reference end then (a door frame in front hid it): the edge seen was not the wall end the
+// relative map starts from, and along the wall the prior was off by what was hidden (0.7 m on
+// the noisy office). A member whose reference end was in view then is used instead.
+Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options) {
+  const RelativeMap& map = state.groups[g].relative;
+  const int64_t basis = map.basis;
+  const SeenWall basis_seen = SeenWhenMade(state, g, basis, options);
+  const Placement& basis_rel = map.members.at(basis);
+  if (basis_rel.ref < 0 || !basis_seen.cut[basis_rel.ref]) {
+    return PlacementFromSighting(basis_seen, basis_rel);
+  }
+  // The latest such sighting: the pose it was made from is the nearest to the group's.
+  Pose2 prior = PlacementFromSighting(basis_seen, basis_rel);
+  int64_t latest = -1;
+  for (const auto& [id, rel] : map.members) {
+    if (id == basis || rel.known != Known::kPoint) continue;
+    const SeenWall seen = SeenWhenMade(state, g, id, options);
+    if (seen.cut[rel.ref] || seen.iteration <= latest) continue;
+    latest = seen.iteration;
+    prior = PlacementFromSighting(seen, rel);
+  }
+  return prior;
+}
+
 struct Link {
   Placement relative;
   Placement global;
@@ -59,8 +93,11 @@ struct Link {
 Pose2 Solve(const std::vector<Link>& links, const Pose2& prior, double prior_weight) {
   double s = 0.0, c = 0.0;
   for (const Link& l : links) {
+    // Weighted by how well each wall's fit fixes its orientation, as in localisation: a door
+    // jamb must not turn a group of walls metres long.
+    const double w = OrientationWeight(*l.plane);
     const double d = l.global.alpha - l.relative.alpha;
-    s += std::sin(d), c += std::cos(d);
+    s += w * std::sin(d), c += w * std::cos(d);
   }
   const double yaw = links.empty() ? prior.yaw : std::atan2(s, c);
   const Matrix2d rot = Eigen::Rotation2Dd(yaw).toRotationMatrix();
@@ -214,12 +251,7 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
     // directions the links leave open. The basis may change as evidence grows, so the
     // sighting is kept, not the frame.
     Pose2 prior = start;
-    if (state.Plane(group.relative.basis) != nullptr) {
-      const int64_t basis = group.relative.basis;
-      const Placement p =
-          PlacementOf(SeenWhenMade(state, g, basis, options), group.relative.members[basis].ref);
-      prior = {p.point.x(), p.point.y(), p.alpha};
-    }
+    if (state.Plane(group.relative.basis) != nullptr) prior = PriorPlacement(state, g, options);
     if (links.empty()) {
       // §II.D "the first grouping can be placed on the global map by comparing the relative
       // map coordinates of each rltplane to its first observation".

@@ -93,6 +93,17 @@ double OrientationSigma(const Observation& obs) {
   return spread > 0.0 ? obs.rms / spread : std::numeric_limits<double>::infinity();
 }
 
+double OrientationWeight(const Observation& obs) {
+  const double sigma = std::min(OrientationSigma(obs), 1.0);
+  return 1.0 / (sigma * sigma + kOrientationFloor * kOrientationFloor);
+}
+
+double OrientationWeight(const RltPlane& plane) {
+  double best = 0.0;
+  for (const Observation& obs : plane.Observations()) best = std::max(best, OrientationWeight(obs));
+  return best;
+}
+
 Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& b,
                                const Eigen::Vector2d& previous, double prior_weight,
                                double min_information) {
@@ -121,8 +132,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       if (!use[k]) continue;
       // Weighted by how well the wall's fit fixes its orientation: a short noisy wall (a door
       // jamb) must not turn the heading of walls metres long.
-      const double sigma = std::min(OrientationSigma(*sightings[k].obs), 1.0);
-      const double w = 1.0 / (sigma * sigma + kOrientationFloor * kOrientationFloor);
+      const double w = OrientationWeight(*sightings[k].obs);
       const double d = sightings[k].world.alpha - sightings[k].obs->Alpha();
       s += w * std::sin(d), c += w * std::cos(d), ++n;
     }

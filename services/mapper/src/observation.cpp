@@ -19,6 +19,7 @@ SeenWall SeenFrom(const Observation& obs, const geometry::Pose2& pose) {
   seen.edge[0] = pose * obs.edge[0];
   seen.edge[1] = pose * obs.edge[1];
   seen.foot = pose * Eigen::Vector2d(-obs.d * obs.normal);
+  seen.cut[0] = obs.cut[0], seen.cut[1] = obs.cut[1];
   return seen;
 }
 

@@ -71,6 +71,15 @@ class LearnedFrustum {
 // are too few points to tell.
 double OrientationSigma(const Observation& obs);
 
+// The weight 1 / (sigma^2 + floor^2) an observed wall's orientation gets from OrientationSigma,
+// with a floor (the map's own error) so the best-fitting walls do not take all the weight.
+double OrientationWeight(const Observation& obs);
+
+// The same weight for a mapped wall from the best fit among its kept observations: how far its
+// orientation can be trusted when a group is turned onto the map (a door jamb or a sliver of
+// wall seen over a few centimetres must not turn walls metres long).
+double OrientationWeight(const RltPlane& plane);
+
 // Least squares a x = b for a position, with `previous` as a weak prior (weight `prior_weight`,
 // applied when the smallest information is below `min_information`). Along a direction the
 // equations leave open (walls within ~11 degrees of parallel) the previous position is kept as

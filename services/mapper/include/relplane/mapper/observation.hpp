@@ -60,6 +60,7 @@ struct SeenWall {
   double alpha = 0.0;
   Eigen::Vector2d edge[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
   Eigen::Vector2d foot = Eigen::Vector2d::Zero();
+  bool cut[2] = {false, false};  // the edge was where the view cut the wall, not its end
 };
 
 // `obs` as seen from sensor pose `pose` (world <- sensor).
