@@ -66,11 +66,9 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   const int64_t basis = map.basis;
   const SeenWall basis_seen = SeenWhenMade(state, g, basis, options);
   const Placement& basis_rel = map.members.at(basis);
-  if (basis_rel.ref < 0 || !basis_seen.cut[basis_rel.ref]) {
-    return PlacementFromSighting(basis_seen, basis_rel);
-  }
-  // The latest such sighting: the pose it was made from is the nearest to the group's.
   Pose2 prior = PlacementFromSighting(basis_seen, basis_rel);
+  if (basis_rel.ref < 0 || !basis_seen.cut[basis_rel.ref]) return prior;
+  // The latest such sighting: the pose it was made from is the nearest to the group's.
   int64_t latest = -1;
   for (const auto& [id, rel] : map.members) {
     if (id == basis || rel.known != Known::kPoint) continue;
@@ -152,12 +150,7 @@ Placement PlacementOf(const SeenWall& seen, int ref) {
 }
 
 Placement PlacementOf(const Observation& obs, const Pose2& pose, int ref) {
-  Placement local;
-  local.alpha = obs.Alpha();
-  local.point = ref >= 0 ? obs.edge[ref] : Vector2d(-obs.d * obs.normal);
-  local.ref = ref;
-  local.known = ref >= 0 ? Known::kPoint : Known::kLine;
-  return Apply(pose, local);
+  return PlacementOf(SeenFrom(obs, pose), ref);
 }
 
 void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& placed,
