@@ -137,9 +137,8 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   w->slot_of.assign(slots, -1);
   w->cells.clear();
   w->cell_of_point.resize(n);
-  // Second pass: each point's slot in its plane's grid; slots become cells, numbered in order of
-  // first appearance, and each cell counts its points and those that enter the fits (one in
-  // `stride`). The grids' parameters sit in a small flat array.
+  // Second pass: each point's slot in its plane's grid (-1 for none), held in cell_of_point for
+  // the third pass. The grids' parameters sit in a small flat array.
   struct Frame {
     float a_lo, b_lo, inv_cell;
     int w1, h1, w;
@@ -160,13 +159,6 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   const int32_t* __restrict label = labels.data();
   const float* __restrict pa = w->a.data();
   const float* __restrict pb = w->b.data();
-  int32_t* __restrict slot_of = w->slot_of.data();
-  const bool all_solid = ambiguous.empty();
-  const uint8_t* amb = all_solid ? nullptr : ambiguous.data();
-  const size_t stride = FitStride(n, options);
-  w->counts.clear();
-  std::vector<int32_t>& fit_start = w->fit_start;
-  fit_start.clear();
   for (size_t i = 0; i < n; ++i) {
     const int32_t l = label[i];
     if (l < 0 || frames[l].base < 0) {
@@ -176,17 +168,41 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     const Frame& f = frames[l];
     const int ix = std::min(f.w1, static_cast<int>((pa[i] - f.a_lo) * f.inv_cell));
     const int iy = std::min(f.h1, static_cast<int>((pb[i] - f.b_lo) * f.inv_cell));
-    int32_t& slot = slot_of[f.base + static_cast<int64_t>(iy) * f.w + ix];
+    cell_of[i] = static_cast<int32_t>(f.base + static_cast<int64_t>(iy) * f.w + ix);
+  }
+  // Third pass: slots become cells, numbered in order of first appearance, and each cell counts
+  // its points. Apart from the pass above, so the slots' loads do not wait on the arithmetic,
+  // and counted per lane (point index mod kLanes): consecutive points of one cell then add to
+  // different counters instead of each waiting on the last one's store.
+  int32_t* __restrict slot_of = w->slot_of.data();
+  std::vector<int32_t>& lane_count = w->lane_count;
+  lane_count.clear();
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t s = cell_of[i];
+    if (s < 0) continue;
+    int32_t& slot = slot_of[s];
     if (slot < 0) {
       slot = static_cast<int32_t>(w->cells.size());
-      w->cells.push_back(Cell{l, ix, iy});
-      w->counts.emplace_back();
+      const int32_t l = label[i];
+      const int32_t at = s - static_cast<int32_t>(frames[l].base);
+      w->cells.push_back(Cell{l, at % frames[l].w, at / frames[l].w});
+      lane_count.insert(lane_count.end(), kLanes, 0);
     }
     const int32_t c = slot;
     cell_of[i] = c;
-    ++w->counts[c].count;
+    ++lane_count[static_cast<size_t>(c) * kLanes + (i & (kLanes - 1))];
   }
   const size_t num_cells = w->cells.size();
+  w->counts.resize(num_cells);
+  for (size_t c = 0; c < num_cells; ++c) {
+    const int32_t* lanes = &lane_count[c * kLanes];
+    w->counts[c] = CellCount{lanes[0] + lanes[1] + lanes[2] + lanes[3], 0};
+  }
+  const bool all_solid = ambiguous.empty();
+  const uint8_t* amb = all_solid ? nullptr : ambiguous.data();
+  const size_t stride = FitStride(n, options);
+  std::vector<int32_t>& fit_start = w->fit_start;
+  fit_start.clear();
   if (stride == 1) {
     for (const CellCount& count : w->counts) fit_start.push_back(count.count);
   } else {
@@ -195,7 +211,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
       if (cell_of[i] >= 0) ++fit_start[cell_of[i]];
     }
   }
-  // Third pass: the fitted points grouped by cell (a counting sort, cloud order kept within a
+  // Fourth pass: the fitted points grouped by cell (a counting sort, cloud order kept within a
   // cell), then each cell's moments accumulated in registers: the same sums, in the same order,
   // as adding the points in cloud order.
   int32_t total = 0;
@@ -208,11 +224,26 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   std::vector<int32_t>& order = w->fit_order;
   order.resize(total);
   {
-    std::vector<int32_t>& next = w->parent;  // scratch: the next free place of each cell
-    next.assign(fit_start.begin(), fit_start.end() - 1);
+    // The next free place of each cell. While consecutive points share a cell, its place is
+    // carried in a register (`run_at`) and written back when the run ends, so a run's points do
+    // not each wait on the last one's store; a run's points load a dummy instead of their
+    // cell's place, without a branch.
+    std::vector<int32_t>& next = w->parent;  // scratch
+    next.assign(fit_start.begin(), fit_start.end());
+    const int32_t dummy = static_cast<int32_t>(num_cells);  // next's last entry, never a cell
+    int32_t run_cell = dummy, run_at = total;
+    int32_t* __restrict at = next.data();
+    int32_t* __restrict out = order.data();
     for (size_t i = 0; i < n; i += stride) {
       const int32_t c = cell_of[i];
-      if (c >= 0) order[next[c]++] = static_cast<int32_t>(i);
+      if (c < 0) continue;
+      const bool same = c == run_cell;
+      at[run_cell] = run_at;
+      const int32_t loaded = at[same ? dummy : c];
+      const int32_t place = same ? run_at : loaded;
+      out[place] = static_cast<int32_t>(i);
+      run_at = place + 1;
+      run_cell = c;
     }
   }
   // Whether each cell holds a solid point. With every point fitted they are grouped by cell,

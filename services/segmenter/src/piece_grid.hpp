@@ -65,6 +65,7 @@ struct PieceWorkspace::Buffers {
   std::vector<int32_t> slot_of;             // per grid slot (all grids): its cell, -1 if empty
   std::vector<Cell> cells;                  // in order of first appearance
   std::vector<CellCount> counts;            // per cell
+  std::vector<int32_t> lane_count;          // per cell and lane: its points, while binning
   std::vector<CellMoments> moments;         // per cell
   std::vector<int32_t> fit_start;           // per cell and one more: where its points start in
   std::vector<int32_t> fit_order;           // the indices of the points that enter the fits
