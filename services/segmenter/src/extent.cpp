@@ -39,7 +39,10 @@ struct Piece {
 void Refit(const Eigen::Vector3f& origin, Piece* piece) {
   const double n = piece->count;
   const Eigen::Vector3d mean = piece->sum / n;
-  const Eigen::Matrix3d scatter = piece->sum_sq - n * mean * mean.transpose();
+  // LocalMoments::AddTo fills the lower triangle only.
+  Eigen::Matrix3d sum_sq = piece->sum_sq;
+  sum_sq.triangularView<Eigen::StrictlyUpper>() = sum_sq.transpose();
+  const Eigen::Matrix3d scatter = sum_sq - n * mean * mean.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(scatter);
   Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();

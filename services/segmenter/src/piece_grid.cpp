@@ -28,7 +28,11 @@ int Reach(const Cell& c, const PlaneGrid& g, const EmPlane& plane, const Options
       g.origin + (g.a_lo + (c.ix + 0.5f) * g.cell) * g.u + (g.b_lo + (c.iy + 0.5f) * g.cell) * g.v;
   const float spacing = SampleSpacing(angular_step, centre.norm(), plane.d);
   const float reach = std::min(options.max_reach, options.reach_spacings * spacing);
-  return std::max(base, static_cast<int>(std::ceil(reach / g.cell)));
+  // ceil of a non-negative float: the baseline x86-64 build has no rounding instruction and
+  // would emulate std::ceil in several.
+  const float cells = reach / g.cell;
+  const int whole = static_cast<int>(cells);
+  return std::max(base, whole + (static_cast<float>(whole) < cells));
 }
 
 }  // namespace
@@ -175,8 +179,9 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   // and counted per lane (point index mod kLanes): consecutive points of one cell then add to
   // different counters instead of each waiting on the last one's store.
   int32_t* __restrict slot_of = w->slot_of.data();
+  // At most one cell per point: sized once, a new cell's counters are zeroed as it appears.
   std::vector<int32_t>& lane_count = w->lane_count;
-  lane_count.clear();
+  if (lane_count.size() < n * kLanes) lane_count.resize(n * kLanes);
   for (size_t i = 0; i < n; ++i) {
     const int32_t s = cell_of[i];
     if (s < 0) continue;
@@ -186,7 +191,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
       const int32_t l = label[i];
       const int32_t at = s - static_cast<int32_t>(frames[l].base);
       w->cells.push_back(Cell{l, at % frames[l].w, at / frames[l].w});
-      lane_count.insert(lane_count.end(), kLanes, 0);
+      std::fill_n(&lane_count[static_cast<size_t>(slot) * kLanes], kLanes, 0);
     }
     const int32_t c = slot;
     cell_of[i] = c;

@@ -78,6 +78,7 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
   // The candidates' coordinates side by side, so each trial's distances are one vectorised loop.
   const size_t m = candidates.size();
   std::vector<float> cx(m), cy(m), cz(m), d2(m);
+  near.resize(m);
   for (size_t k = 0; k < m; ++k) {
     cx[k] = pts.x[candidates[k]];
     cy[k] = pts.y[candidates[k]];
@@ -92,13 +93,16 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
       const float dx = cx[k] - sx, dy = cy[k] - sy, dz = cz[k] - sz;
       d2[k] = dx * dx + dy * dy + dz * dz;
     }
-    near.clear();
+    // Every candidate is written and the count advances past those within the radius: no
+    // branch to mispredict.
+    size_t within = 0;
     for (size_t k = 0; k < m; ++k) {
-      if (d2[k] < radius2) near.emplace_back(d2[k], candidates[k]);
+      near[within] = {d2[k], candidates[k]};
+      within += d2[k] < radius2;
     }
-    if (static_cast<int>(near.size()) < kMinNeighbours) continue;
-    const size_t keep = std::min(near.size(), static_cast<size_t>(options.proposal_neighbours));
-    std::nth_element(near.begin(), near.begin() + (keep - 1), near.end());
+    if (static_cast<int>(within) < kMinNeighbours) continue;
+    const size_t keep = std::min(within, static_cast<size_t>(options.proposal_neighbours));
+    std::nth_element(near.begin(), near.begin() + (keep - 1), near.begin() + within);
     neighbours.resize(keep);
     for (size_t m = 0; m < keep; ++m) neighbours[m] = near[m].second;
     Fit fit = FitIndices(pts, neighbours);

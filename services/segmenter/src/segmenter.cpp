@@ -128,7 +128,7 @@ Result Segmenter::Segment(const Cloud& input) {
                                    static_cast<int>(std::ceil(options_.min_points * ratio * 0.5f)));
   std::mt19937 rng(options_.seed);
   std::vector<EmPlane> planes = previous_;
-  Responsibilities resp;
+  Responsibilities& resp = resp_;
   for (int round = 0; round < options_.max_rounds; ++round) {
     result.rounds = round + 1;
     RunEm(sample, options_, options_.em_iterations, &planes, &resp);

@@ -12,7 +12,6 @@ namespace {
 constexpr int kProbes = 48;
 constexpr float kConeRadians = 0.1f;  // half angle of the cone counted around a probe
 constexpr int kMinCount = 8;          // fewer sample points in the cone: too sparse to tell
-constexpr float kMinCosIncidence = 0.05f;
 
 }  // namespace
 
@@ -43,12 +42,6 @@ RELPLANE_SIMD_CLONES float EstimateAngularStep(const Cloud& sample, size_t cloud
   const double cone = 2.0 * M_PI * (1.0 - std::cos(static_cast<double>(kConeRadians)));
   const double points_in_cone = *quartile * static_cast<double>(cloud_size) / n;
   return static_cast<float>(std::sqrt(cone / points_in_cone));
-}
-
-float SampleSpacing(float angular_step, float range, float plane_distance) {
-  const float cos_incidence =
-      std::max(kMinCosIncidence, range > 0.0f ? std::fabs(plane_distance) / range : 1.0f);
-  return angular_step * range / std::min(1.0f, cos_incidence);
 }
 
 }  // namespace relplane::segmenter

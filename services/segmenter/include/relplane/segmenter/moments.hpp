@@ -48,17 +48,25 @@ struct LocalMoments {
   }
 
   // Adds these moments, taken about `origin` instead, to double sums:
-  // sum (o + q)(o + q)^T = n o o^T + o s^T + s o^T + S, with o = ref - origin.
+  // sum (o + q)(o + q)^T = n o o^T + o s^T + s o^T + S, with o = ref - origin. Only the lower
+  // triangle of `sum_sq` is accumulated (the upper one stays as it was): the sums are symmetric,
+  // and their reader mirrors it before use.
   void AddTo(const Eigen::Vector3f& origin, int* count, Eigen::Vector3d* sum,
              Eigen::Matrix3d* sum_sq) const {
     if (n == 0) return;
-    const Eigen::Vector3d o = (ref - origin).cast<double>();
-    const Eigen::Vector3d s(sx, sy, sz);
-    Eigen::Matrix3d ss;
-    ss << sxx, sxy, sxz, sxy, syy, syz, sxz, syz, szz;
+    const Eigen::Vector3f of = ref - origin;
+    const double o[3] = {of.x(), of.y(), of.z()};
+    const double s[3] = {sx, sy, sz};
+    const double ss[3][3] = {{sxx, sxy, sxz}, {sxy, syy, syz}, {sxz, syz, szz}};
     *count += n;
-    *sum += n * o + s;
-    *sum_sq += n * o * o.transpose() + o * s.transpose() + s * o.transpose() + ss;
+    for (int i = 0; i < 3; ++i) {
+      const double no = n * o[i];
+      (*sum)(i) += no + s[i];
+      // The terms in the order the expression n o o^T + o s^T + s o^T + S adds them.
+      for (int j = 0; j <= i; ++j) {
+        (*sum_sq)(i, j) += ((no * o[j] + o[i] * s[j]) + s[i] * o[j]) + ss[i][j];
+      }
+    }
   }
 };
 

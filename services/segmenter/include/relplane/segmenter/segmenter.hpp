@@ -41,6 +41,7 @@ class Segmenter {
   std::vector<EmPlane> previous_;
   // Buffers reused from frame to frame (the segmenter is long-lived): no per-cloud allocation.
   Cloud finite_, sample_, described_;
+  Responsibilities resp_;
   std::vector<int32_t> labels_;
   std::vector<uint8_t> ambiguous_;
   PieceWorkspace workspace_;

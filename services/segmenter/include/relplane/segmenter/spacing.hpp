@@ -2,6 +2,8 @@
 // How far apart the sensor's samples land, learnt from the cloud itself (no image grid, no
 // intrinsics): connected pieces must bridge the sampling gaps of a wall seen at a grazing angle.
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include "relplane/segmenter/cloud.hpp"
@@ -18,6 +20,12 @@ float EstimateAngularStep(const Cloud& sample, size_t cloud_size);
 // Expected distance between neighbouring samples on a plane at distance `plane_distance` from
 // the sensor, at range `range`: the step times the range, stretched by 1 / cos(incidence) =
 // range / plane_distance (bounded: a plane through the sensor is seen edge-on).
-float SampleSpacing(float angular_step, float range, float plane_distance);
+// Inline: it is evaluated for every cell of every piece.
+inline float SampleSpacing(float angular_step, float range, float plane_distance) {
+  constexpr float kMinCosIncidence = 0.05f;
+  const float cos_incidence =
+      std::max(kMinCosIncidence, range > 0.0f ? std::fabs(plane_distance) / range : 1.0f);
+  return angular_step * range / std::min(1.0f, cos_incidence);
+}
 
 }  // namespace relplane::segmenter
