@@ -7,6 +7,7 @@
 #include <random>
 
 #include "ideal_segmenter.hpp"
+#include "relplane/mapper/global_map.hpp"
 #include "relplane/mapper/grouping.hpp"
 #include "relplane/mapper/localisation.hpp"
 #include "relplane/mapper/mapper.hpp"
@@ -225,6 +226,75 @@ TEST(Localisation, TwoWallsGiveThePoseOneWallTheMotionModel) {
   EXPECT_NEAR(est.pose.x, truth.x, 1e-3);  // wall x = 4 fixes x
   EXPECT_NEAR(est.pose.y, previous.y, 1e-3);
   EXPECT_EQ(Localise({}, previous, frustum, options).status, PoseStatus::kLost);
+}
+
+TEST(GlobalMap, AGroupMadeAfterTheMotionModelIsPlacedFromAPoseTheWallsFixed) {
+  // A hallway (walls y = 1 and y = -1) driven along x at 5 cm an iteration. Group 0 has mapped
+  // the left wall's line and the right wall piece from x = 3 to x = 5 by its x = 3 end. From
+  // iteration 41 nothing fixes x: the pose stands still at x = 2 (motion model, §II.E) while
+  // the sensor goes on to x = 3. Group 1, made at iteration 60, holds both walls and a door jamb
+  // at x = 6; it knows the piece by its x = 5 end only, so its links leave x open and its prior
+  // decides. That must come from a sighting made while the pose was still fixed (iteration 40),
+  // not from the pose the motion model held, 1 m behind.
+  const auto sensor_x = [](int64_t k) { return 0.05 * static_cast<double>(k); };
+  const auto seen_from = [](double x, const Vector2d& a, const Vector2d& b, int64_t k) {
+    return *MakeObservation(Wall(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
+  };
+  const Vector2d left0(-1, 1), left1(9, 1), piece0(3, -1), piece1(5, -1), jamb0(6, -1),
+      jamb1(6, -1.3);
+  MapperState state;
+  state.first_iteration = 0;
+  RltPlane left(0, seen_from(0, left0, left1, 0), 0.05, 1000);
+  RltPlane piece(1, seen_from(0, piece0, piece1, 0), 0.05, 1000);
+  RltPlane jamb(2, seen_from(sensor_x(45), jamb0, jamb1, 45), 0.05, 1000);
+  for (int64_t k = 0; k <= 60; ++k) {
+    const double x = sensor_x(k);
+    if (k > 0) left.Add(seen_from(x, left0, left1, k));
+    if (k > 0) piece.Add(seen_from(x, piece0, piece1, k));
+    if (k > 45) jamb.Add(seen_from(x, jamb0, jamb1, k));
+    state.poses[k] = {std::min(x, sensor_x(40)), 0.0, 0.0};
+    if (k <= 40) state.fixed_poses.insert(k);
+  }
+  // Frame angles as seen from the hallway: the left wall 0, the piece pi (its edge 0 is the
+  // x = 5 end), the jamb -pi/2.
+  ASSERT_NEAR(std::cos(piece.Latest().Alpha()), -1.0, 1e-9);
+  ASSERT_GT(piece.Latest().edge[0].x(), piece.Latest().edge[1].x());
+  state.planes.emplace(0, std::move(left));
+  state.planes.emplace(1, std::move(piece));
+  state.planes.emplace(2, std::move(jamb));
+  Placement line;
+  line.alpha = 0.0, line.point = {0, 1}, line.known = Known::kLine;
+  Placement end3;
+  end3.alpha = M_PI, end3.point = {3, -1}, end3.ref = 1, end3.known = Known::kPoint;
+  state.global = {{0, line}, {1, end3}};
+  state.placed_by = {{0, 0}, {1, 0}};
+  Group first;
+  first.members = {0, 1};
+  first.dirty = false;
+  Group made_later;
+  made_later.id = 1;
+  made_later.created = 60;
+  made_later.members = {0, 1, 2};
+  made_later.dirty = false;
+  // In the frame of the piece's x = 5 end: the left wall 2 m across, the jamb 1 m further on.
+  made_later.relative.basis = 1;
+  Placement rel_line;
+  rel_line.alpha = -M_PI, rel_line.point = {0, -2}, rel_line.known = Known::kLine;
+  Placement rel_end5;
+  rel_end5.ref = 0, rel_end5.known = Known::kPoint;
+  Placement rel_jamb;
+  rel_jamb.alpha = M_PI / 2, rel_jamb.point = {-1, 0}, rel_jamb.ref = 0;
+  rel_jamb.known = Known::kPoint;
+  made_later.relative.members = {{0, rel_line}, {1, rel_end5}, {2, rel_jamb}};
+  state.groups = {first, made_later};
+  for (auto& [id, plane] : state.planes) {
+    plane.groups = {id == 2 ? 1 : 0};
+    if (id != 2) plane.groups.push_back(1);
+  }
+  BuildGlobalMap(state, 1, MapperOptions{});
+  ASSERT_TRUE(state.global.count(2));
+  EXPECT_NEAR(state.global.at(2).point.x(), 6.0, 1e-6);
+  EXPECT_NEAR(state.global.at(2).point.y(), -1.0, 1e-6);
 }
 
 TEST(Mapper, PlaneLeavingAndReenteringIsTheSameRltplane) {

@@ -48,6 +48,25 @@ SeenWall SeenWhenMade(MapperState& state, size_t g, int64_t id, const MapperOpti
   return seen;
 }
 
+// Member `id` of group `g` as last seen before the group was made from a pose the walls fixed
+// in every direction, kept in the group (invalid when there is none). Poses from the group's
+// first iteration on were solved against its own placement, and one the motion model carried
+// (§II.E) stood still along a direction the walls left open while the sensor moved on.
+const SeenWall& SeenFromFixedPose(MapperState& state, size_t g, int64_t id) {
+  Group& group = state.groups[g];
+  auto [kept, inserted] = group.seen_fixed.try_emplace(id);
+  if (!inserted) return kept->second;
+  const RltPlane& plane = *state.Plane(id);
+  const auto& all = plane.Observations();
+  for (size_t i = plane.LowerBound(group.created); i > 0; --i) {
+    const Observation& obs = all[i - 1];
+    if (state.fixed_poses.count(obs.iteration) == 0) continue;
+    kept->second = SeenFrom(obs, state.poses.at(obs.iteration));
+    break;
+  }
+  return kept->second;
+}
+
 // The group's placement from one member as seen when the group was made: its sighting then
 // put back through its place in the relative map.
 Pose2 PlacementFromSighting(const SeenWall& seen, const Placement& rel) {
@@ -57,19 +76,33 @@ Pose2 PlacementFromSighting(const SeenWall& seen, const Placement& rel) {
   return {t.x(), t.y(), yaw};
 }
 
-// Prior for group `g`: the basis as seen when the group was made, unless the view cut its
-// reference end then (a door frame in front hid it): the edge seen was not the wall end the
-// relative map starts from, and along the wall the prior was off by what was hidden (0.7 m on
-// the noisy office). A member whose reference end was in view then is used instead.
+// Prior for group `g`: a member's reference end as seen around when the group was made, put
+// back through its place in the relative map. First choice: the latest sighting of such an end
+// before the group was made, from a pose the walls fixed. A pose the motion model carried
+// stood still along the hallway while the sensor moved on, and every group placed from it kept
+// that lag on the map (a hallway with doors lost 0.5 m at each stretch between door frames).
+// Else the basis as seen when the group was made, unless the view cut its reference end then
+// (a door frame in front hid it: the edge seen was not the wall end the relative map starts
+// from, 0.7 m along the wall on the noisy office); then the latest member whose reference end
+// was in view.
 Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options) {
   const RelativeMap& map = state.groups[g].relative;
+  int64_t latest = -1;
+  Pose2 prior;
+  for (const auto& [id, rel] : map.members) {
+    if (rel.known != Known::kPoint) continue;
+    const SeenWall& seen = SeenFromFixedPose(state, g, id);
+    if (!seen.valid || seen.cut[rel.ref] || seen.iteration <= latest) continue;
+    latest = seen.iteration;
+    prior = PlacementFromSighting(seen, rel);
+  }
+  if (latest >= 0) return prior;
   const int64_t basis = map.basis;
   const SeenWall basis_seen = SeenWhenMade(state, g, basis, options);
   const Placement& basis_rel = map.members.at(basis);
-  Pose2 prior = PlacementFromSighting(basis_seen, basis_rel);
+  prior = PlacementFromSighting(basis_seen, basis_rel);
   if (basis_rel.ref < 0 || !basis_seen.cut[basis_rel.ref]) return prior;
   // The latest such sighting: the pose it was made from is the nearest to the group's.
-  int64_t latest = -1;
   for (const auto& [id, rel] : map.members) {
     if (id == basis || rel.known != Known::kPoint) continue;
     const SeenWall seen = SeenWhenMade(state, g, id, options);

@@ -22,6 +22,7 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   if (state_.first_iteration < 0) {
     state_.first_iteration = iteration;
     state_.poses[iteration] = pose_;
+    state_.fixed_poses.insert(iteration);
   }
   last_iteration_ = iteration;
   std::vector<Observation> observations;
@@ -45,6 +46,7 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   const PoseEstimate estimate = Localise(iteration, visible);              // §II.D, §II.E
   pose_ = estimate.pose;
   state_.poses[iteration] = pose_;
+  if (estimate.status == PoseStatus::kTracking) state_.fixed_poses.insert(iteration);
   for (int64_t id : visible) {
     RltPlane* plane = state_.Plane(id);
     if (plane == nullptr) continue;
@@ -55,6 +57,9 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   DropOldObservations(state_, visible, iteration, options_);  // bounded memory (§II.F)
   while (!state_.poses.empty() && state_.poses.begin()->first < iteration - 2000) {
     state_.poses.erase(state_.poses.begin());
+  }
+  while (!state_.fixed_poses.empty() && *state_.fixed_poses.begin() < iteration - 2000) {
+    state_.fixed_poses.erase(state_.fixed_poses.begin());
   }
   return estimate;
 }

@@ -40,6 +40,7 @@ void Leave(MapperState& state, Group& group, int64_t id) {
                       group.members.end());
   group.relative.members.erase(id);
   group.seen.erase(id);
+  group.seen_fixed.erase(id);
   group.dirty = true;
   RltPlane* plane = state.Plane(id);
   plane->groups.erase(std::remove(plane->groups.begin(), plane->groups.end(), group.id),

@@ -68,6 +68,9 @@ struct Group {
   // placement, a member placed by orientation only its line. Kept so the group can be placed
   // again after the observations are dropped.
   std::map<int64_t, SeenWall> seen;
+  // Members as last seen before the group was made from a pose the walls fixed (invalid when
+  // never so seen): the prior along a direction the links leave open (global_map.cpp).
+  std::map<int64_t, SeenWall> seen_fixed;
   bool dirty = true;
   int loop_evidence = 0;  // GroupLoopEvidence when last placed (pose_graph.hpp)
 
@@ -86,6 +89,10 @@ struct MapperState {
   std::map<int64_t, Placement> global;        // §II.D global map: plane id -> world placement
   std::map<int64_t, int64_t> placed_by;       // plane id -> group index that placed it
   std::map<int64_t, geometry::Pose2> poses;   // iteration -> estimated pose (recent only)
+  // Iterations of `poses` the walls fixed in every direction (tracking, §II.D), and the first
+  // iteration's (the anchor). Elsewhere the motion model kept a direction at its old value
+  // while the sensor moved on (§II.E), so a wall placed from that pose is off along it.
+  std::set<int64_t> fixed_poses;
   int64_t next_id = 0;
   int64_t first_iteration = -1;
   size_t open_from = 0;     // groups before this index are frozen (§II.F)
