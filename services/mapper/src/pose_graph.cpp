@@ -14,6 +14,7 @@ namespace {
 using Eigen::Vector2d;
 
 constexpr double kRobust = 3.0;  // sigmas
+constexpr double kInitialDamping = 1e-3;  // Levenberg-Marquardt, relative to the diagonal
 
 // One plane's placement in two groups' relative maps.
 struct Tie {
@@ -91,18 +92,23 @@ Normal Linearise(const std::vector<Tie>& ties, const std::vector<geometry::Pose2
     eq.Add(geometry::WrapAngle(alpha - (pj.yaw + t.b->alpha)), wa, t.i, {0, 0, 1}, t.j,
            {0, 0, -1});
     if (t.a->known == Known::kAngle || t.b->known == Known::kAngle) continue;
-    // The line: the two placements' points lie on one world line.
+    // The line: the two placements' points lie on one world line. Its normal turns with group
+    // i (d n / d yaw = t): the two points may lie metres apart along the wall, and without that
+    // term the steps turned the groups wrongly.
     const Vector2d nrm = NormalOf(alpha), dir = DirectionOf(alpha);
     const Vector2d diff = pi * t.a->point - pj * t.b->point;
-    eq.Add(nrm.dot(diff), wp, t.i, {nrm.x(), nrm.y(), nrm.dot(RotDerivative(pi.yaw, t.a->point))},
-           t.j, {-nrm.x(), -nrm.y(), -nrm.dot(RotDerivative(pj.yaw, t.b->point))});
+    eq.Add(nrm.dot(diff), wp, t.i,
+           {nrm.x(), nrm.y(), dir.dot(diff) + nrm.dot(RotDerivative(pi.yaw, t.a->point))}, t.j,
+           {-nrm.x(), -nrm.y(), -nrm.dot(RotDerivative(pj.yaw, t.b->point))});
     // The static edge: the same wall end in both.
     if (t.a->known != Known::kPoint || t.b->known != Known::kPoint) continue;
     Vector2d qb;
     if (!EdgePoint(*t.plane, *t.b, t.a->ref, &qb)) continue;
     const Vector2d qa = t.a->point;
-    eq.Add(dir.dot(pi * qa - pj * qb), wp, t.i,
-           {dir.x(), dir.y(), dir.dot(RotDerivative(pi.yaw, qa))}, t.j,
+    const Vector2d edge_diff = pi * qa - pj * qb;
+    // d t / d yaw = -n.
+    eq.Add(dir.dot(edge_diff), wp, t.i,
+           {dir.x(), dir.y(), -nrm.dot(edge_diff) + dir.dot(RotDerivative(pi.yaw, qa))}, t.j,
            {-dir.x(), -dir.y(), -dir.dot(RotDerivative(pj.yaw, qb))});
   }
   // Each group's own placement as a weak prior (the gauge where ties leave a direction open);
@@ -160,23 +166,38 @@ PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptio
   std::vector<geometry::Pose2> x = x0;
   Eigen::SparseMatrix<double> h(3 * n, 3 * n);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+  Normal eq = Linearise(ties, x, x0, options);
+  result.cost_before = eq.cost;
+  // Levenberg-Marquardt: a step that does not lower the cost is refused and the next one damped
+  // harder. Plain Gauss-Newton overshot: through the robust kernel and the groups the ties
+  // leave nearly free, its first step raised the cost several times over (a hallway loop's
+  // consistent map, 52 -> 224), and the iterations ended in another minimum metres away.
+  double damping = kInitialDamping;
   for (int iter = 0; iter < options.max_iterations; ++iter) {
-    Normal eq = Linearise(ties, x, x0, options);
-    if (iter == 0) result.cost_before = eq.cost;
     h.setFromTriplets(eq.h.begin(), eq.h.end());
+    for (int k = 0; k < 3 * n; ++k) h.coeffRef(k, k) *= 1.0 + damping;
     solver.compute(h);  // the pattern may change between iterations (exact zeros are left out)
     if (solver.info() != Eigen::Success) break;
     const Eigen::VectorXd step = solver.solve(-eq.g);
     if (!step.allFinite()) break;
+    std::vector<geometry::Pose2> next = x;
     for (int k = 1; k < n; ++k) {
-      x[k].x += step(3 * k);
-      x[k].y += step(3 * k + 1);
-      x[k].yaw = geometry::WrapAngle(x[k].yaw + step(3 * k + 2));
+      next[k].x += step(3 * k);
+      next[k].y += step(3 * k + 1);
+      next[k].yaw = geometry::WrapAngle(next[k].yaw + step(3 * k + 2));
     }
     result.iterations = iter + 1;
+    Normal next_eq = Linearise(ties, next, x0, options);
+    if (next_eq.cost >= eq.cost) {
+      damping *= 10.0;
+      continue;
+    }
+    x = std::move(next);
+    eq = std::move(next_eq);
+    damping /= 10.0;
     if (step.cwiseAbs().maxCoeff() < 1e-5) break;  // m and rad: far below the map's noise
   }
-  result.cost_after = Linearise(ties, x, x0, options).cost;
+  result.cost_after = eq.cost;
   // Keep the result only if it explains the ties better (a failed solve leaves the map alone).
   if (result.cost_after < result.cost_before) {
     for (int k = 0; k < n; ++k) state.groups[k].placement = x[k];
