@@ -228,6 +228,33 @@ TEST(Localisation, TwoWallsGiveThePoseOneWallTheMotionModel) {
   EXPECT_EQ(Localise({}, previous, frustum, options).status, PoseStatus::kLost);
 }
 
+TEST(Localisation, WallsThatAllDisagreeKeepThePreviousPose) {
+  // Two pairs of facing walls (x = 4 and x = -4, y = 1 and y = -1), the first of each pair seen
+  // 1 m nearer than mapped (mis-registered): the first round's pose lies halfway, every wall is
+  // 0.5 m from it and is left out. The pose they gave must not be published with the LOST
+  // status: the previous one is.
+  const geometry::Pose2 previous{0.2, -0.1, 0.0};
+  const Vector2d ends[4][2] = {{{4, -1}, {4, 1}}, {{-4, 1}, {-4, -1}}, {{-1, 1}, {1, 1}},
+                               {{1, -1}, {-1, -1}}};
+  const Vector2d nearer[4] = {{-1, 0}, {0, 0}, {0, -1}, {0, 0}};
+  std::vector<RltPlane> planes;
+  std::vector<Placement> mapped(4);
+  for (int k = 0; k < 4; ++k) {
+    const Vector2d a = ends[k][0] + nearer[k] - previous.Translation();
+    const Vector2d b = ends[k][1] + nearer[k] - previous.Translation();
+    planes.emplace_back(k, *MakeObservation(Wall(a, b), 1, 0.3), 0.05, 100);
+    mapped[k].alpha = planes.back().Latest().Alpha();
+    mapped[k].point = ends[k][0];
+    mapped[k].known = Known::kLine;
+  }
+  std::vector<Sighting> sightings;
+  for (int k = 0; k < 4; ++k) sightings.push_back({&planes[k].Latest(), &planes[k], mapped[k]});
+  const PoseEstimate est = Localise(sightings, previous, LearnedFrustum{}, LocalisationOptions{});
+  EXPECT_EQ(est.status, PoseStatus::kLost);
+  EXPECT_NEAR(est.pose.x, previous.x, 1e-9);
+  EXPECT_NEAR(est.pose.y, previous.y, 1e-9);
+}
+
 TEST(GlobalMap, AGroupMadeAfterTheMotionModelIsPlacedFromAPoseTheWallsFixed) {
   // A hallway (walls y = 1 and y = -1) driven along x at 5 cm an iteration. Group 0 has mapped
   // the left wall's line and the right wall piece from x = 3 to x = 5 by its x = 3 end. From

@@ -137,6 +137,9 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       s += w * std::sin(d), c += w * std::cos(d), ++n;
     }
     if (n == 0) {
+      // Every wall left out as an outlier of the first round's pose: that pose came from walls
+      // that disagree by metres (a mis-registered wall), so it is not kept either.
+      out.pose = previous;
       out.status = PoseStatus::kLost;
       out.planes = 0;
       return out;
