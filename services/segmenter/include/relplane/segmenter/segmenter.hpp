@@ -18,6 +18,7 @@ struct Result {
   int64_t assigned_points = 0;    // points supporting some EM plane before the split
   int em_planes = 0;              // mixture components after EM
   int rounds = 0;                 // EM rounds run
+  int reanchored = 0;             // seeds lost to the sensor's motion and kept, moved with it
   float angular_step = 0.0f;      // radians, the sensor's sampling step learnt from the cloud
   // With options.keep_labels: for every input point, its index in `planes` or -1.
   std::vector<int32_t> labels;
