@@ -15,21 +15,22 @@ namespace {
 
 using namespace relplane::segmenter;
 
+// The office at σ = 1 cm seen from 1 m high, `shift` metres along x and turned `yaw` radians.
+Cloud OfficeView(int width, int height, double shift, double yaw, bool unorganized) {
+  testing::Sensor s;
+  s.width = width;
+  s.height = height;
+  s.sigma = 0.01;
+  s.world_from_sensor =
+      Eigen::Translation3d(shift, 0, 1.0) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
+  const auto world = testing::Office();
+  return unorganized ? testing::RenderUnorganized(world, s).cloud : testing::Render(world, s).cloud;
+}
+
 // Two nearby views of the office, so a stream sees a moving sensor.
 std::vector<Cloud> OfficeFrames(int width, int height, bool unorganized) {
-  std::vector<Cloud> frames;
-  for (int k = 0; k < 2; ++k) {
-    testing::Sensor s;
-    s.width = width;
-    s.height = height;
-    s.sigma = 0.01;
-    s.world_from_sensor = Eigen::Translation3d(0.05 * k, 0, 1.0) *
-                          Eigen::AngleAxisd(0.02 * k, Eigen::Vector3d::UnitZ());
-    const auto world = testing::Office();
-    frames.push_back(unorganized ? testing::RenderUnorganized(world, s).cloud
-                                 : testing::Render(world, s).cloud);
-  }
-  return frames;
+  return {OfficeView(width, height, 0.0, 0.0, unorganized),
+          OfficeView(width, height, 0.05, 0.02, unorganized)};
 }
 
 // A smooth path through the office at walking pace seen at 30 Hz (1 cm and 0.2 degrees a
@@ -38,13 +39,7 @@ std::vector<Cloud> OfficePath(int width, int height) {
   constexpr int kSteps = 10;
   std::vector<Cloud> views;
   for (int k = 0; k < kSteps; ++k) {
-    testing::Sensor s;
-    s.width = width;
-    s.height = height;
-    s.sigma = 0.01;
-    s.world_from_sensor = Eigen::Translation3d(0.01 * k, 0, 1.0) *
-                          Eigen::AngleAxisd(0.0035 * k, Eigen::Vector3d::UnitZ());
-    views.push_back(testing::Render(testing::Office(), s).cloud);
+    views.push_back(OfficeView(width, height, 0.01 * k, 0.0035 * k, false));
   }
   std::vector<Cloud> frames = views;
   for (int k = kSteps - 2; k > 0; --k) frames.push_back(views[k]);
