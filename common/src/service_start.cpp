@@ -4,10 +4,11 @@
 
 namespace relplane {
 
-void AddServiceFlags(CLI::App& app, const std::string& section, ServiceStart* start) {
-  cli::AddCommonFlags(app, &start->flags);
-  app.add_flag("--check-config", start->check_config,
-               "Check the `" + section + "` section of --config and exit (0, or 2 with the error)");
+void AddServiceFlags(cli::Parser& parser, const std::string& section, ServiceStart* start) {
+  cli::AddCommonFlags(parser, &start->flags);
+  parser.AddFlag(
+      "--check-config", &start->check_config,
+      "Check the `" + section + "` section of --config and exit (0, or 2 with the error)");
 }
 
 std::unique_ptr<bus::Bus> OpenServiceBus(const ServiceStart& start) {

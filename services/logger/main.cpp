@@ -33,15 +33,15 @@ std::string DefaultOutDir() {
 
 int main(int argc, char** argv) {
   using namespace relplane;
-  CLI::App app{"relplane-logger: record a run's trajectories, map, metrics and pictures"};
+  cli::Parser parser{"relplane-logger: record a run's trajectories, map, metrics and pictures"};
   cli::CommonFlags flags;
-  cli::AddCommonFlags(app, &flags);
+  cli::AddCommonFlags(parser, &flags);
   std::string out_dir;
   bool check_config = false;
-  app.add_option("--out", out_dir, "Run folder to write (created; default ./run-<UTC time>)");
-  app.add_flag("--check-config", check_config,
-               "Validate the logger and expect: sections of --config and exit");
-  if (const auto code = cli::Parse(app, argc, argv)) return *code;
+  parser.Add("--out", &out_dir, "Run folder to write (created; default ./run-<UTC time>)");
+  parser.AddFlag("--check-config", &check_config,
+                 "Validate the logger and expect: sections of --config and exit");
+  if (const auto code = parser.Parse(argc, argv)) return *code;
 
   eval::EvalConfig cfg;
   try {

@@ -18,14 +18,14 @@
 
 int main(int argc, char** argv) {
   using namespace relplane;
-  CLI::App app{"relplane-mapper: the Relative Plane algorithm (PLANES -> POSE, MAP)"};
+  cli::Parser parser{"relplane-mapper: the Relative Plane algorithm (PLANES -> POSE, MAP)"};
   ServiceStart start;
-  AddServiceFlags(app, "mapper", &start);
+  AddServiceFlags(parser, "mapper", &start);
   std::string checkpoint;
-  app.add_option("--checkpoint", checkpoint,
-                 "Journal of the processed plane sets: replayed on start when it exists, then "
-                 "appended to (the launcher gives RUN/mapper.journal)");
-  if (const auto code = cli::Parse(app, argc, argv)) return *code;
+  parser.Add("--checkpoint", &checkpoint,
+             "Journal of the processed plane sets: replayed on start when it exists, then "
+             "appended to (the launcher gives RUN/mapper.journal)");
+  if (const auto code = parser.Parse(argc, argv)) return *code;
 
   mapper::MapperOptions options;
   if (const auto code = LoadSectionOptions<mapper::MapperOptions>(

@@ -14,10 +14,10 @@
 
 int main(int argc, char** argv) {
   using namespace relplane;
-  CLI::App app{"relplane-segmenter: EM plane segmentation (SENSOR_POINTS -> PLANES)"};
+  cli::Parser parser{"relplane-segmenter: EM plane segmentation (SENSOR_POINTS -> PLANES)"};
   ServiceStart start;
-  AddServiceFlags(app, "segmenter", &start);
-  if (const auto code = cli::Parse(app, argc, argv)) return *code;
+  AddServiceFlags(parser, "segmenter", &start);
+  if (const auto code = parser.Parse(argc, argv)) return *code;
 
   segmenter::ServiceOptions options;
   if (const auto code = LoadSectionOptions<segmenter::ServiceOptions>(

@@ -38,19 +38,6 @@ void Publish(bus::Bus& bus, ServiceStats& stats, const std::string& channel, con
   if (!bus::Publish(bus, channel, msg)) stats.Rejected(channel + ": the transport refused it");
 }
 
-// A flag check whose message reads well (CLI11's range check prints the largest double).
-CLI::Validator NotNegative() {
-  return CLI::Validator(
-      [](std::string& text) {
-        try {
-          if (std::stod(text) >= 0.0) return std::string();
-        } catch (const std::exception&) {
-        }
-        return "'" + text + "' must be a number >= 0";
-      },
-      "NUMBER>=0");
-}
-
 int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double rate,
         int64_t iterations, bus::Bus& bus) {
   ServiceStats stats("relplane-sim", kBudgetMs);
@@ -109,17 +96,18 @@ int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"relplane-sim: simulated depth sensor in a world of rectangles"};
+  cli::Parser parser{"relplane-sim: simulated depth sensor in a world of rectangles"};
   ServiceStart start;
-  AddServiceFlags(app, "sim", &start);
+  AddServiceFlags(parser, "sim", &start);
   double rate = -1.0;
   int64_t iterations = -1;
-  app.add_option("--rate", rate,
-                 "Publishing pace in iterations/s (0: as fast as possible; default: the "
-                 "scenario's sim.rate_hz). Simulated time always steps by 1/sim.rate_hz")
-      ->check(NotNegative());
-  app.add_option("--iterations", iterations, "Stop after N iterations")->check(NotNegative());
-  if (const auto code = cli::Parse(app, argc, argv)) return *code;
+  parser
+      .Add("--rate", &rate,
+           "Publishing pace in iterations/s (0: as fast as possible; default: the "
+           "scenario's sim.rate_hz). Simulated time always steps by 1/sim.rate_hz")
+      .NonNegative();
+  parser.Add("--iterations", &iterations, "Stop after N iterations").NonNegative();
+  if (const auto code = parser.Parse(argc, argv)) return *code;
 
   sim::ServiceOptions options;
   if (const auto code = LoadSectionOptions<sim::ServiceOptions>(

@@ -6,7 +6,6 @@
 // over that minute (RMS and worst, against the driven poses): flat memory must not cost
 // accuracy. Not a unit test: run by
 // hand or from `./relplane bench`; the machine's load shows in the times, not in the memory.
-#include <CLI/CLI.hpp>
 #include <malloc.h>
 
 #include <algorithm>
@@ -18,6 +17,7 @@
 #include <vector>
 
 #include "ideal_segmenter.hpp"
+#include "relplane/common/cli.hpp"
 #include "relplane/common/service_stats.hpp"
 
 namespace {
@@ -110,17 +110,17 @@ void WriteJson(const std::string& path, const std::vector<Sample>& samples, bool
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Drives the mapper round a hallway loop for N simulated minutes and reports "
-               "resident memory, stored observations and time per iteration at 1, 10 and 30 "
-               "minutes (issue 5: bounded memory)."};
+  relplane::cli::Parser parser{
+      "Drives the mapper round a hallway loop for N simulated minutes and reports "
+      "resident memory, stored observations and time per iteration at 1, 10 and 30 "
+      "minutes (issue 5: bounded memory)."};
   double minutes = 30.0;
   bool noisy = false;
   std::string json;
-  app.add_option("--minutes", minutes, "Simulated minutes to run (30 Hz)")
-      ->check(CLI::Range(0.1, 600.0));
-  app.add_flag("--noisy", noisy, "Plane-level noise of a sigma = 1 cm segmenter");
-  app.add_option("--json", json, "Also write the samples to this JSON file");
-  CLI11_PARSE(app, argc, argv);
+  parser.Add("--minutes", &minutes, "Simulated minutes to run (30 Hz)").Range(0.1, 600.0);
+  parser.AddFlag("--noisy", &noisy, "Plane-level noise of a sigma = 1 cm segmenter");
+  parser.Add("--json", &json, "Also write the samples to this JSON file");
+  if (const auto code = parser.Parse(argc, argv)) return *code;
 
   constexpr double kRate = 30.0;
   const World world = HallwayLoop(16.0, 10.0, 2.0, 3.0);

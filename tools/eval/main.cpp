@@ -19,20 +19,20 @@ constexpr int kExitBadLog = 2;
 
 int main(int argc, char** argv) {
   using namespace relplane;
-  CLI::App app{"Score a recorded relplane bus.lcmlog and write its run folder"};
+  cli::Parser parser{"Score a recorded relplane bus.lcmlog and write its run folder"};
   std::string log_path;
   std::string out_dir;
   std::string config;
   std::string log_level = "warn";
   bool quiet = false;
-  app.add_option("LOG", log_path, "Recorded LCM log (bus.lcmlog)")->required();
-  app.add_option("--out", out_dir, "Run folder to write (default: the log's folder)");
-  app.add_option("--config", config,
-                 "Scenario YAML for the logger section and expect: (default: scenario.yaml "
-                 "beside the log, when present)");
-  app.add_flag("--quiet", quiet, "Do not print the summary table");
-  app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off");
-  if (const auto code = cli::Parse(app, argc, argv)) return *code;
+  parser.Add("LOG", &log_path, "Recorded LCM log (bus.lcmlog)").Required();
+  parser.Add("--out", &out_dir, "Run folder to write (default: the log's folder)");
+  parser.Add("--config", &config,
+             "Scenario YAML for the logger section and expect: (default: scenario.yaml "
+             "beside the log, when present)");
+  parser.AddFlag("--quiet", &quiet, "Do not print the summary table");
+  parser.Add("--log-level", &log_level, "trace, debug, info, warn, error, critical or off");
+  if (const auto code = parser.Parse(argc, argv)) return *code;
   try {
     cli::SetupLogging("relplane-eval", log_level);
   } catch (const std::exception& e) {

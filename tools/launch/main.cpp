@@ -4,7 +4,6 @@
 
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -197,33 +196,35 @@ int Launch(Request request) {
 
 int main(int argc, char** argv) {
   using relplane::launch::Request;
-  CLI::App app{"Runs a scenario: its services on a private LCM bus, recorded by lcm-logger.",
-               "relplane-launch"};
+  relplane::cli::Parser parser{
+      "Runs a scenario: its services on a private LCM bus, recorded by lcm-logger.",
+      "relplane-launch"};
   Request request;
-  app.add_option("scenario", request.scenario,
-                 "Scenario YAML file (with --replay: default the log's RUN/scenario.yaml)");
-  app.add_option("--out", request.out,
-                 "Run folder (default: runs/NAME-UTCTIME, or under $RELPLANE_RUNS_DIR)");
-  app.add_option("--set", request.sets,
-                 "Override a scenario value: key.path=value (YAML value; lists as key[N]); "
-                 "repeatable")
-      ->allow_extra_args(false)  // one value per --set, so the SCENARIO may follow it
-      ->take_all();
-  app.add_option("--lcm-url", request.lcm_url, "Bus URL (default: a udpm port unique to the run)");
-  app.add_option("--replay", request.replay,
-                 "Feed this recorded bus.lcmlog's SENSOR_POINTS, SIM_TRUTH and SIM_WORLD to "
-                 "fresh segmenter, mapper and logger with lcm-logplayer, instead of the simulator");
-  app.add_option("--speed", request.speed, "Replay speed factor (1: as recorded)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--iterations", request.iterations,
-                 "Stop the simulator after N iterations (passed to relplane-sim)")
-      ->check(CLI::NonNegativeNumber);
-  app.add_flag("--check", request.check, "Validate the scenario with every service, start nothing");
-  app.add_flag("--allow-missing", request.allow_missing,
-               "Run without services that are not built yet (with a warning)");
-  app.add_option("--bin-dir", request.bin_dir,
-                 "Where relplane-<service> programs are (default: beside relplane-launch)");
-  if (const auto code = relplane::cli::Parse(app, argc, argv)) return *code;
+  parser.Add("scenario", &request.scenario,
+             "Scenario YAML file (with --replay: default the log's RUN/scenario.yaml)");
+  parser.Add("--out", &request.out,
+             "Run folder (default: runs/NAME-UTCTIME, or under $RELPLANE_RUNS_DIR)");
+  parser
+      .Add("--set", &request.sets,
+           "Override a scenario value: key.path=value (YAML value; lists as key[N]); "
+           "repeatable")
+      .OneValuePerUse();  // so the SCENARIO may follow it
+  parser.Add("--lcm-url", &request.lcm_url, "Bus URL (default: a udpm port unique to the run)");
+  parser.Add("--replay", &request.replay,
+             "Feed this recorded bus.lcmlog's SENSOR_POINTS, SIM_TRUTH and SIM_WORLD to "
+             "fresh segmenter, mapper and logger with lcm-logplayer, instead of the simulator");
+  parser.Add("--speed", &request.speed, "Replay speed factor (1: as recorded)").Positive();
+  parser
+      .Add("--iterations", &request.iterations,
+           "Stop the simulator after N iterations (passed to relplane-sim)")
+      .NonNegative();
+  parser.AddFlag("--check", &request.check,
+                 "Validate the scenario with every service, start nothing");
+  parser.AddFlag("--allow-missing", &request.allow_missing,
+                 "Run without services that are not built yet (with a warning)");
+  parser.Add("--bin-dir", &request.bin_dir,
+             "Where relplane-<service> programs are (default: beside relplane-launch)");
+  if (const auto code = parser.Parse(argc, argv)) return *code;
   try {
     return relplane::launch::Launch(request);
   } catch (const relplane::config::ConfigError& e) {

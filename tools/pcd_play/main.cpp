@@ -38,27 +38,26 @@ relplane::point_cloud_t ToMessage(const relplane::pcd::PcdCloud& cloud, bool dro
 
 int main(int argc, char** argv) {
   using namespace relplane;
-  CLI::App app{
+  cli::Parser parser{
       "relplane-pcd-play: publish PCD files (ascii, binary, binary_compressed) as "
       "SENSOR_POINTS"};
   cli::CommonFlags flags;
-  cli::AddCommonFlags(app, &flags);
+  cli::AddCommonFlags(parser, &flags);
   std::vector<std::string> files;
   double rate_hz = 10.0;
   bool optical = false;
   bool drop_invalid = false;
   int loops = 1;
   std::string channel = "SENSOR_POINTS";
-  app.add_option("files", files, "PCD files, published in this order")->required();
-  app.add_option("--rate", rate_hz, "clouds per second (0: as fast as possible)")
-      ->check(CLI::NonNegativeNumber);
-  app.add_flag("--optical", optical,
-               "the files are in the optical frame (x right, y down, z forward): turn them into "
-               "the sensor frame (x forward, y left, z up)");
-  app.add_flag("--drop-invalid", drop_invalid, "leave NaN/inf points out of the messages");
-  app.add_option("--loop", loops, "play the file list this many times")->check(CLI::PositiveNumber);
-  app.add_option("--channel", channel, "channel to publish on");
-  if (auto code = cli::Parse(app, argc, argv)) return *code;
+  parser.Add("files", &files, "PCD files, published in this order").Required();
+  parser.Add("--rate", &rate_hz, "clouds per second (0: as fast as possible)").NonNegative();
+  parser.AddFlag("--optical", &optical,
+                 "the files are in the optical frame (x right, y down, z forward): turn them into "
+                 "the sensor frame (x forward, y left, z up)");
+  parser.AddFlag("--drop-invalid", &drop_invalid, "leave NaN/inf points out of the messages");
+  parser.Add("--loop", &loops, "play the file list this many times").Positive();
+  parser.Add("--channel", &channel, "channel to publish on");
+  if (auto code = parser.Parse(argc, argv)) return *code;
   try {
     cli::SetupLogging("relplane-pcd-play", flags.log_level);
   } catch (const std::exception& e) {

@@ -166,19 +166,19 @@ void Draw(Raster* raster, const pcd::PcdCloud& pcd, const segmenter::Result& r, 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"relplane-pcd-planes-svg: draw the planes the segmenter finds in PCD frames"};
+  cli::Parser parser{"relplane-pcd-planes-svg: draw the planes the segmenter finds in PCD frames"};
   std::vector<std::string> files;
   std::string out = "planes.svg", config;
   bool optical = false;
   double focal = 525.0;
-  app.add_option("files", files, "organized PCD files")->required();
-  app.add_option("--out", out, "SVG file to write");
-  app.add_option("--config", config, "YAML file with a `segmenter` section");
-  app.add_flag("--optical", optical, "the files are in the optical frame");
-  app.add_option("--focal", focal, "focal length in pixels, for the extent outlines");
+  parser.Add("files", &files, "organized PCD files").Required();
+  parser.Add("--out", &out, "SVG file to write");
+  parser.Add("--config", &config, "YAML file with a `segmenter` section");
+  parser.AddFlag("--optical", &optical, "the files are in the optical frame");
+  parser.Add("--focal", &focal, "focal length in pixels, for the extent outlines");
   std::string ppm;
-  app.add_option("--ppm", ppm, "also write the picture as a PPM raster, one pixel per point");
-  if (auto code = cli::Parse(app, argc, argv)) return *code;
+  parser.Add("--ppm", &ppm, "also write the picture as a PPM raster, one pixel per point");
+  if (auto code = parser.Parse(argc, argv)) return *code;
   segmenter::ServiceOptions options;
   try {
     options = segmenter::LoadServiceOptions(config);

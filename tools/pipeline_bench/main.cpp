@@ -7,7 +7,6 @@
 #include <sys/utsname.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <relplane/plane_set_t.hpp>
 #include <relplane/point_cloud_t.hpp>
 #include <relplane/pose_t.hpp>
@@ -179,25 +178,25 @@ RateResult RunAtRate(const Flags& flags, const std::string& bin_dir,
 
 int main(int argc, char** argv) {
   Flags flags;
-  CLI::App app{"Pipeline latency and throughput against the 30 it/s budget: relplane-segmenter "
-               "and relplane-mapper fed with simulated clouds at rising rates.",
-               "relplane-bench"};
-  app.add_option("scenario", flags.scenario, "Scenario YAML (its sim section makes the clouds)")
-      ->check(CLI::ExistingFile)
-      ->required();
-  app.add_option("--out", flags.out, "Folder for bench.json and latency.svg")->required();
-  app.add_option("--rates", flags.rates, "Sensor rates for 160x120 clouds, Hz; 0 = unpaced")
-      ->delimiter(',')
-      ->capture_default_str();
-  app.add_option("--large-rates", flags.large_rates, "Sensor rates for 640x480 clouds, Hz")
-      ->delimiter(',')
-      ->capture_default_str();
-  app.add_option("--frames", flags.frames, "Frames per 160x120 run")->capture_default_str();
-  app.add_option("--large-frames", flags.large_frames, "Frames per 640x480 run")
-      ->capture_default_str();
-  app.add_flag("--skip-large", flags.skip_large, "Only 160x120 clouds");
-  app.add_flag("--verbose", flags.verbose, "Show the services' output");
-  if (const auto code = cli::Parse(app, argc, argv)) return *code;
+  cli::Parser parser{
+      "Pipeline latency and throughput against the 30 it/s budget: relplane-segmenter "
+      "and relplane-mapper fed with simulated clouds at rising rates.",
+      "relplane-bench"};
+  parser.Add("scenario", &flags.scenario, "Scenario YAML (its sim section makes the clouds)")
+      .ExistingFile()
+      .Required();
+  parser.Add("--out", &flags.out, "Folder for bench.json and latency.svg").Required();
+  parser.Add("--rates", &flags.rates, "Sensor rates for 160x120 clouds, Hz; 0 = unpaced")
+      .Delimiter(',')
+      .ShowDefault();
+  parser.Add("--large-rates", &flags.large_rates, "Sensor rates for 640x480 clouds, Hz")
+      .Delimiter(',')
+      .ShowDefault();
+  parser.Add("--frames", &flags.frames, "Frames per 160x120 run").ShowDefault();
+  parser.Add("--large-frames", &flags.large_frames, "Frames per 640x480 run").ShowDefault();
+  parser.AddFlag("--skip-large", &flags.skip_large, "Only 160x120 clouds");
+  parser.AddFlag("--verbose", &flags.verbose, "Show the services' output");
+  if (const auto code = parser.Parse(argc, argv)) return *code;
   InstallStopHandlers();
 
   sim::SimOptions sim_options;

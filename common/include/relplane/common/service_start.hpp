@@ -2,7 +2,6 @@
 // The start every service shares (DESIGN.md): --config, --lcm-url, --log-level and
 // --check-config; logging; its options from its section of the scenario; the bus.
 
-#include <CLI/CLI.hpp>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -20,7 +19,7 @@ struct ServiceStart {
 };
 
 // Adds the common flags and --check-config (which checks section `section` of --config).
-void AddServiceFlags(CLI::App& app, const std::string& section, ServiceStart* start);
+void AddServiceFlags(cli::Parser& parser, const std::string& section, ServiceStart* start);
 
 // Sets up logging as `name`, then `*options = load(config file)`. Returns the exit code when
 // the program should stop: 2 after a bad option (its one line on stderr), 0 after
