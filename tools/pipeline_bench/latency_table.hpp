@@ -29,6 +29,11 @@ struct RateResult {
   LatencySummary segmenter;   // PLANES receive - SENSOR_POINTS publish
   LatencySummary mapper;      // POSE receive - PLANES receive
   LatencySummary end_to_end;  // POSE receive - SENSOR_POINTS publish
+  // CPU time (user + system, all threads) per frame published, ms; negative when unknown.
+  // The sum over the processes bounds the rate the cores can hold whatever the scheduling.
+  double segmenter_cpu_ms = -1.0;
+  double mapper_cpu_ms = -1.0;
+  double bench_cpu_ms = -1.0;  // this process: publishing and receiving every message
   // Held: nothing dropped and p99 end to end within one frame period (unpaced: the period of
   // the rate achieved).
   bool held = false;

@@ -26,6 +26,7 @@
 #include "convert.hpp"
 #include "latency_table.hpp"
 #include "options_yaml.hpp"
+#include "process_cpu.hpp"
 #include "relplane/common/bus.hpp"
 #include "relplane/common/cli.hpp"
 #include "relplane/common/service_runtime.hpp"
@@ -135,7 +136,18 @@ RateResult RunAtRate(const Flags& flags, const std::string& bin_dir,
   }
   if (ready.size() < children.size()) std::cerr << "warning: services slow to report ready\n";
 
+  // CPU used by each process over the run, read before the services are told to stop.
+  std::vector<pid_t> pids = {getpid()};
+  for (const auto& c : children) pids.push_back(c->Pid());
+  auto cpu_now = [&] {
+    std::vector<double> seconds;
+    for (pid_t pid : pids) seconds.push_back(ProcessCpuSeconds(pid).value_or(-1.0));
+    return seconds;
+  };
+  const std::vector<double> cpu_start = cpu_now();
+
   const int64_t start = MonotonicMicros();
+  size_t published = 0;
   for (size_t i = 0; i < clouds.size() && !StopRequested(); ++i) {
     if (rate_hz > 0.0) {
       const int64_t due = start + static_cast<int64_t>(i * 1e6 / rate_hz);
@@ -148,6 +160,7 @@ RateResult RunAtRate(const Flags& flags, const std::string& bin_dir,
     }
     table.Stamp(Stage::kPublished, static_cast<int64_t>(i), MonotonicMicros());
     bus->PublishRaw("SENSOR_POINTS", clouds[i].data(), clouds[i].size());
+    ++published;
     for (auto& c : children) Drain(*c, flags.verbose);
   }
   const double publish_s = (MonotonicMicros() - start) / 1e6;
@@ -163,6 +176,11 @@ RateResult RunAtRate(const Flags& flags, const std::string& bin_dir,
     }
     if (seen == clouds.size()) break;
   }
+  const std::vector<double> cpu_end = cpu_now();
+  auto cpu_ms_per_frame = [&](size_t k) {
+    if (cpu_start[k] < 0.0 || cpu_end[k] < 0.0 || published == 0) return -1.0;
+    return (cpu_end[k] - cpu_start[k]) * 1000.0 / static_cast<double>(published);
+  };
   for (auto& c : children) c->SignalGroup(SIGINT);
   for (auto& c : children) {
     for (int i = 0; i < 100 && kill(c->Pid(), 0) == 0; ++i) {
@@ -171,7 +189,11 @@ RateResult RunAtRate(const Flags& flags, const std::string& bin_dir,
     }
   }
   *e2e_ms = table.EndToEndMs();
-  return table.Summarise(rate_hz, publish_s);
+  RateResult result = table.Summarise(rate_hz, publish_s);
+  result.bench_cpu_ms = cpu_ms_per_frame(0);
+  result.segmenter_cpu_ms = cpu_ms_per_frame(1);  // children: segmenter, then mapper
+  result.mapper_cpu_ms = cpu_ms_per_frame(2);
+  return result;
 }
 
 }  // namespace

@@ -91,6 +91,9 @@ void WriteJson(const BenchReport& report, const Verdict& verdict, std::ostream& 
       JsonSummary("mapper", r.mapper, out);
       out << ", ";
       JsonSummary("end_to_end", r.end_to_end, out);
+      out << ", \"cpu_ms_per_frame\": {\"segmenter\": " << Fixed(r.segmenter_cpu_ms, 3)
+          << ", \"mapper\": " << Fixed(r.mapper_cpu_ms, 3)
+          << ", \"bench\": " << Fixed(r.bench_cpu_ms, 3) << "}";
       out << "}" << (j + 1 < res.rates.size() ? "," : "") << "\n";
     }
     out << "    ]}" << (i + 1 < report.resolutions.size() ? "," : "") << "\n";
@@ -153,7 +156,7 @@ void PrintTable(const BenchReport& report, const Verdict& verdict, std::ostream&
       << std::setw(9) << "got" << std::setw(7) << "drops" << std::setw(10) << "seg p50"
       << std::setw(10) << "seg p99" << std::setw(10) << "map p50" << std::setw(10) << "map p99"
       << std::setw(10) << "e2e p50" << std::setw(10) << "e2e p99" << std::setw(10) << "e2e max"
-      << "  held\n";
+      << std::setw(9) << "seg cpu" << std::setw(9) << "map cpu" << "  held\n";
   for (const auto& res : report.resolutions) {
     for (const auto& r : res.rates) {
       out << std::left << std::setw(9) << res.name << std::right << std::setw(8)
@@ -162,13 +165,15 @@ void PrintTable(const BenchReport& report, const Verdict& verdict, std::ostream&
           << Fixed(r.segmenter.p50_ms) << std::setw(10) << Fixed(r.segmenter.p99_ms)
           << std::setw(10) << Fixed(r.mapper.p50_ms) << std::setw(10) << Fixed(r.mapper.p99_ms)
           << std::setw(10) << Fixed(r.end_to_end.p50_ms) << std::setw(10)
-          << Fixed(r.end_to_end.p99_ms) << std::setw(10) << Fixed(r.end_to_end.max_ms) << "  "
-          << (r.held ? "yes" : "no") << "\n";
+          << Fixed(r.end_to_end.p99_ms) << std::setw(10) << Fixed(r.end_to_end.max_ms)
+          << std::setw(9) << Fixed(r.segmenter_cpu_ms) << std::setw(9) << Fixed(r.mapper_cpu_ms)
+          << "  " << (r.held ? "yes" : "no") << "\n";
     }
     out << "  " << res.name << ": highest rate held " << Fixed(HighestHeldRate(res), 0)
         << " it/s\n";
   }
-  out << "(latencies in ms; 'held' = no drops and p99 end to end within one frame period)\n";
+  out << "(latencies in ms; 'held' = no drops and p99 end to end within one frame period;\n"
+         " cpu = CPU ms per frame of the service process, all threads)\n";
   for (const auto& line : verdict.lines) out << line << "\n";
   out << (verdict.pass ? "PASS" : "FAIL") << " against the 30 it/s budget\n";
 }
