@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "relplane/segmenter/spacing.hpp"
+#include "simd.hpp"
 
 namespace relplane::segmenter {
 namespace {
@@ -35,7 +36,124 @@ int Reach(const Cell& c, const PlaneGrid& g, const EmPlane& plane, const Options
   return std::max(base, whole + (static_cast<float>(whole) < cells));
 }
 
+// Each labelled point's coordinates in its plane's grid (a, b) and its distance to the plane
+// (e); unlabelled points get values no one reads.
+RELPLANE_SIMD_CLONES void Project(size_t n, const float* __restrict x, const float* __restrict y,
+                                  const float* __restrict z, const int32_t* __restrict label,
+                                  const PlaneTable& t, float* __restrict a, float* __restrict b,
+                                  float* __restrict e) {
+  const float *ox = t.ox.data(), *oy = t.oy.data(), *oz = t.oz.data();
+  const float *ux = t.ux.data(), *uy = t.uy.data(), *uz = t.uz.data();
+  const float *vx = t.vx.data(), *vy = t.vy.data(), *vz = t.vz.data();
+  const float *nx = t.nx.data(), *ny = t.ny.data(), *nz = t.nz.data();
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t j = label[i] + 1;
+    const float qx = x[i] - ox[j], qy = y[i] - oy[j], qz = z[i] - oz[j];
+    a[i] = ux[j] * qx + uy[j] * qy + uz[j] * qz;
+    b[i] = vx[j] * qx + vy[j] * qy + vz[j] * qz;
+    e[i] = nx[j] * qx + ny[j] * qy + nz[j] * qz;
+  }
+}
+
+// The bounds of plane `plane`'s points in its grid and their count, in g. One pass per plane
+// over the whole cloud, in kLanes independent lanes so it vectorises: min and max are exact,
+// the bounds are those of any order.
+RELPLANE_SIMD_CLONES void Bounds(size_t n, const int32_t* __restrict label, int32_t plane,
+                                 const float* __restrict a, const float* __restrict b,
+                                 PlaneGrid* g) {
+  constexpr size_t kLanes = 8;
+  float a_lo[kLanes], a_hi[kLanes], b_lo[kLanes], b_hi[kLanes];
+  int32_t count[kLanes];
+  for (size_t l = 0; l < kLanes; ++l) {
+    a_lo[l] = b_lo[l] = kInf;
+    a_hi[l] = b_hi[l] = -kInf;
+    count[l] = 0;
+  }
+  const size_t whole = n / kLanes * kLanes;
+  for (size_t i = 0; i < whole; i += kLanes) {
+    for (size_t l = 0; l < kLanes; ++l) {
+      // Selects on locals: std::min on the lanes' references would compile to masked stores.
+      const bool in = label[i + l] == plane;
+      const float pa = a[i + l], pb = b[i + l];
+      const float lo_a = in ? pa : kInf, hi_a = in ? pa : -kInf;
+      const float lo_b = in ? pb : kInf, hi_b = in ? pb : -kInf;
+      count[l] += in;
+      a_lo[l] = lo_a < a_lo[l] ? lo_a : a_lo[l];
+      a_hi[l] = a_hi[l] < hi_a ? hi_a : a_hi[l];
+      b_lo[l] = lo_b < b_lo[l] ? lo_b : b_lo[l];
+      b_hi[l] = b_hi[l] < hi_b ? hi_b : b_hi[l];
+    }
+  }
+  for (size_t i = whole; i < n; ++i) {
+    if (label[i] != plane) continue;
+    ++count[0];
+    a_lo[0] = std::min(a_lo[0], a[i]);
+    a_hi[0] = std::max(a_hi[0], a[i]);
+    b_lo[0] = std::min(b_lo[0], b[i]);
+    b_hi[0] = std::max(b_hi[0], b[i]);
+  }
+  for (size_t l = 0; l < kLanes; ++l) {
+    g->points += count[l];
+    g->a_lo = std::min(g->a_lo, a_lo[l]);
+    g->a_hi = std::max(g->a_hi, a_hi[l]);
+    g->b_lo = std::min(g->b_lo, b_lo[l]);
+    g->b_hi = std::max(g->b_hi, b_hi[l]);
+  }
+}
+
+// Each point's slot in its plane's grid, -1 for none.
+RELPLANE_SIMD_CLONES void Slots(size_t n, const int32_t* __restrict label,
+                               const float* __restrict a, const float* __restrict b,
+                               const PlaneTable& t, int32_t* __restrict slot) {
+  const float *a_lo = t.a_lo.data(), *b_lo = t.b_lo.data(), *inv_cell = t.inv_cell.data();
+  const int32_t *w1 = t.w1.data(), *h1 = t.h1.data(), *w = t.w.data(), *base = t.base.data();
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t j = label[i] + 1;
+    const int32_t fx = static_cast<int32_t>((a[i] - a_lo[j]) * inv_cell[j]);
+    const int32_t fy = static_cast<int32_t>((b[i] - b_lo[j]) * inv_cell[j]);
+    const int32_t ix = std::min(fx, w1[j]);
+    const int32_t iy = std::min(fy, h1[j]);
+    // base is -1 without a grid: its sign bits make the slot -1 (a mask, not a branch).
+    slot[i] = (base[j] + iy * w[j] + ix) | (base[j] >> 31);
+  }
+}
+
 }  // namespace
+
+void PlaneTable::Fill(const std::vector<PlaneGrid>& grids) {
+  std::vector<float>* axes[] = {&ox, &oy, &oz, &ux, &uy, &uz, &vx, &vy, &vz, &nx, &ny, &nz};
+  for (std::vector<float>* v : axes) v->assign(grids.size() + 1, 0.0f);
+  for (size_t j = 0; j < grids.size(); ++j) {
+    const PlaneGrid& g = grids[j];
+    for (int c = 0; c < 3; ++c) {
+      (*axes[c])[j + 1] = g.origin[c];
+      (*axes[3 + c])[j + 1] = g.u[c];
+      (*axes[6 + c])[j + 1] = g.v[c];
+      (*axes[9 + c])[j + 1] = g.n[c];
+    }
+  }
+}
+
+void PlaneTable::SetFrames(const std::vector<PlaneGrid>& grids) {
+  a_lo.assign(grids.size() + 1, 0.0f);
+  b_lo.assign(grids.size() + 1, 0.0f);
+  inv_cell.assign(grids.size() + 1, 0.0f);
+  w1.assign(grids.size() + 1, 0);
+  h1.assign(grids.size() + 1, 0);
+  w.assign(grids.size() + 1, 0);
+  base.assign(grids.size() + 1, -1);
+  for (size_t j = 0; j < grids.size(); ++j) {
+    const PlaneGrid& g = grids[j];
+    if (!g.used) continue;
+    a_lo[j + 1] = g.a_lo;
+    b_lo[j + 1] = g.b_lo;
+    inv_cell[j + 1] = g.inv_cell;
+    w1[j + 1] = g.w - 1;
+    h1[j + 1] = g.h - 1;
+    w[j + 1] = g.w;
+    base[j + 1] = static_cast<int32_t>(g.base);
+  }
+}
 
 void PlaneAxes(const Eigen::Vector3f& n, bool vertical, Eigen::Vector3f* u, Eigen::Vector3f* v) {
   if (vertical) {
@@ -67,57 +185,17 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     PlaneAxes(planes[j].normal, std::fabs(planes[j].normal.z()) < options.vertical_max_nz, &g.u,
               &g.v);
   }
-  // One pass in cloud order: each point's coordinates in its plane's grid, and the bounds. The
-  // bounds and counts are kept per plane and lane (point index mod kLanes): consecutive points
-  // of one plane then update different accumulators instead of waiting on each other.
-  constexpr size_t kLanes = 4;
+  // Each point's coordinates in its plane's grid, then each plane's bounds and point count.
   const size_t k = planes.size();
-  std::vector<float> a_lo(k * kLanes, kInf), a_hi(k * kLanes, -kInf);
-  std::vector<float> b_lo(k * kLanes, kInf), b_hi(k * kLanes, -kInf);
-  std::vector<int> count(k * kLanes, 0);
-  std::vector<float> axes(k * 12);  // origin, u, v, n per plane
-  for (size_t j = 0; j < k; ++j) {
-    const PlaneGrid& g = w->grids[j];
-    for (int c = 0; c < 3; ++c) {
-      axes[j * 12 + c] = g.origin[c];
-      axes[j * 12 + 3 + c] = g.u[c];
-      axes[j * 12 + 6 + c] = g.v[c];
-      axes[j * 12 + 9 + c] = g.n[c];
-    }
-  }
+  PlaneTable& table = w->table;
+  table.Fill(w->grids);
   w->a.resize(n);
   w->b.resize(n);
   w->e.resize(n);
-  float* __restrict out_a = w->a.data();
-  float* __restrict out_b = w->b.data();
-  float* __restrict out_e = w->e.data();
-  for (size_t i = 0; i < n; ++i) {
-    const int32_t l = labels[i];
-    if (l < 0) continue;
-    const float* g = &axes[static_cast<size_t>(l) * 12];
-    const float qx = x[i] - g[0], qy = y[i] - g[1], qz = z[i] - g[2];
-    const float a = g[3] * qx + g[4] * qy + g[5] * qz;
-    const float b = g[6] * qx + g[7] * qy + g[8] * qz;
-    out_a[i] = a;
-    out_b[i] = b;
-    out_e[i] = g[9] * qx + g[10] * qy + g[11] * qz;
-    const size_t slot = static_cast<size_t>(l) * kLanes + (i & (kLanes - 1));
-    ++count[slot];
-    a_lo[slot] = std::min(a_lo[slot], a);
-    a_hi[slot] = std::max(a_hi[slot], a);
-    b_lo[slot] = std::min(b_lo[slot], b);
-    b_hi[slot] = std::max(b_hi[slot], b);
-  }
+  Project(n, x, y, z, labels.data(), table, w->a.data(), w->b.data(), w->e.data());
   for (size_t j = 0; j < k; ++j) {
     PlaneGrid& g = w->grids[j];
-    for (size_t lane = 0; lane < kLanes; ++lane) {
-      const size_t slot = j * kLanes + lane;
-      g.points += count[slot];
-      g.a_lo = std::min(g.a_lo, a_lo[slot]);
-      g.a_hi = std::max(g.a_hi, a_hi[slot]);
-      g.b_lo = std::min(g.b_lo, b_lo[slot]);
-      g.b_hi = std::max(g.b_hi, b_hi[slot]);
-    }
+    Bounds(n, labels.data(), static_cast<int32_t>(j), w->a.data(), w->b.data(), &g);
   }
   size_t slots = 0;
   for (PlaneGrid& g : w->grids) {
@@ -141,43 +219,17 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   w->slot_of.assign(slots, -1);
   w->cells.clear();
   w->cell_of_point.resize(n);
-  // Second pass: each point's slot in its plane's grid (-1 for none), held in cell_of_point for
-  // the third pass. The grids' parameters sit in a small flat array.
-  struct Frame {
-    float a_lo, b_lo, inv_cell;
-    int w1, h1, w;
-    int64_t base;  // -1 for an unused grid
-  };
-  std::vector<Frame> frames(k);
-  for (size_t j = 0; j < k; ++j) {
-    const PlaneGrid& g = w->grids[j];
-    frames[j] = Frame{g.a_lo,
-                      g.b_lo,
-                      g.inv_cell,
-                      g.w - 1,
-                      g.h - 1,
-                      g.w,
-                      g.used ? static_cast<int64_t>(g.base) : -1};
-  }
+  // Each point's slot in its plane's grid (-1 for none), held in cell_of_point for the pass
+  // below.
+  table.SetFrames(w->grids);
+  Slots(n, labels.data(), w->a.data(), w->b.data(), table, w->cell_of_point.data());
   int32_t* __restrict cell_of = w->cell_of_point.data();
   const int32_t* __restrict label = labels.data();
-  const float* __restrict pa = w->a.data();
-  const float* __restrict pb = w->b.data();
-  for (size_t i = 0; i < n; ++i) {
-    const int32_t l = label[i];
-    if (l < 0 || frames[l].base < 0) {
-      cell_of[i] = -1;
-      continue;
-    }
-    const Frame& f = frames[l];
-    const int ix = std::min(f.w1, static_cast<int>((pa[i] - f.a_lo) * f.inv_cell));
-    const int iy = std::min(f.h1, static_cast<int>((pb[i] - f.b_lo) * f.inv_cell));
-    cell_of[i] = static_cast<int32_t>(f.base + static_cast<int64_t>(iy) * f.w + ix);
-  }
-  // Third pass: slots become cells, numbered in order of first appearance, and each cell counts
-  // its points. Apart from the pass above, so the slots' loads do not wait on the arithmetic,
-  // and counted per lane (point index mod kLanes): consecutive points of one cell then add to
-  // different counters instead of each waiting on the last one's store.
+  // Slots become cells, numbered in order of first appearance, and each cell counts its points.
+  // Apart from the pass above, so the slots' loads do not wait on the arithmetic, and counted
+  // per lane (point index mod kLanes): consecutive points of one cell then add to different
+  // counters instead of each waiting on the last one's store.
+  constexpr size_t kLanes = 4;
   int32_t* __restrict slot_of = w->slot_of.data();
   // At most one cell per point: sized once, a new cell's counters are zeroed as it appears.
   std::vector<int32_t>& lane_count = w->lane_count;
@@ -189,8 +241,8 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     if (slot < 0) {
       slot = static_cast<int32_t>(w->cells.size());
       const int32_t l = label[i];
-      const int32_t at = s - static_cast<int32_t>(frames[l].base);
-      w->cells.push_back(Cell{l, at % frames[l].w, at / frames[l].w});
+      const int32_t at = s - table.base[l + 1];
+      w->cells.push_back(Cell{l, at % table.w[l + 1], at / table.w[l + 1]});
       std::fill_n(&lane_count[static_cast<size_t>(slot) * kLanes], kLanes, 0);
     }
     const int32_t c = slot;

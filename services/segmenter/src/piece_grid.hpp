@@ -58,6 +58,21 @@ struct PlaneGrid {
   size_t base = 0;  // offset of its slots in Buffers::slot_of
 };
 
+// The grids' frames in arrays indexed by a point's label plus one (entry 0, for unlabelled
+// points, has no grid), so the per-point passes of BinPoints look their plane up without a
+// branch and vectorise.
+struct PlaneTable {
+  // Per grid: origin, axes u, v and normal n (Fill).
+  std::vector<float> ox, oy, oz, ux, uy, uz, vx, vy, vz, nx, ny, nz;
+  // Per grid: lower bounds, inverse cell size, last column and row, width and offset of its
+  // slots, -1 for no grid (SetFrames).
+  std::vector<float> a_lo, b_lo, inv_cell;
+  std::vector<int32_t> w1, h1, w, base;
+
+  void Fill(const std::vector<PlaneGrid>& grids);
+  void SetFrames(const std::vector<PlaneGrid>& grids);
+};
+
 struct PieceWorkspace::Buffers {
   std::vector<float> a, b;                  // per point: coordinates in its plane's grid
   std::vector<float> e;                     // per point: its distance to its EM plane
@@ -72,6 +87,7 @@ struct PieceWorkspace::Buffers {
   std::vector<CellFinish> finish;           // per cell
   std::vector<uint8_t> mode;                // per cell: what the second pass does with its points
   std::vector<PlaneGrid> grids;             // per EM plane
+  PlaneTable table;                         // the grids, for the per-point passes
   std::vector<int32_t> piece_of;            // per cell: its piece, -1 for none
   std::vector<int32_t> parent, root_piece;  // union-find over cells
   std::vector<int> reach;                   // per cell, in cells; 0 for cells in no piece
