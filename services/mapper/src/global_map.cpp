@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <set>
 
 #include "relplane/mapper/localisation.hpp"
 #include "relplane/mapper/pose_graph.hpp"
@@ -98,8 +99,15 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   }
   if (latest >= 0) return prior;
   const int64_t basis = map.basis;
-  const SeenWall basis_seen = SeenWhenMade(state, g, basis, options);
   const Placement& basis_rel = map.members.at(basis);
+  // A basis known by its line only: its line as last seen from a fixed pose before the group
+  // was made, for the same reason (turning in place at a corner, the pose the motion model
+  // carried across the wall's line was 2 cm off, and so was the wall).
+  const SeenWall& basis_fixed = SeenFromFixedPose(state, g, basis);
+  if (basis_rel.known == Known::kLine && basis_fixed.valid) {
+    return PlacementFromSighting(basis_fixed, basis_rel);
+  }
+  const SeenWall basis_seen = SeenWhenMade(state, g, basis, options);
   prior = PlacementFromSighting(basis_seen, basis_rel);
   if (basis_rel.ref < 0 || !basis_seen.cut[basis_rel.ref]) return prior;
   // The latest such sighting: the pose it was made from is the nearest to the group's.
@@ -250,8 +258,12 @@ void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
 
 void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options) {
   // Forget what the re-placed groups placed.
+  std::set<size_t> earlier;  // groups before `from` that share a plane a re-placed group placed
   for (auto it = state.placed_by.begin(); it != state.placed_by.end();) {
     if (static_cast<size_t>(it->second) >= from) {
+      for (int64_t g : state.Plane(it->first)->groups) {
+        if (static_cast<size_t>(g) < from) earlier.insert(static_cast<size_t>(g));
+      }
       state.global.erase(it->first);
       it = state.placed_by.erase(it);
     } else {
@@ -261,6 +273,11 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
   for (auto& [id, placed] : state.global) {
     if (placed.has_other && static_cast<size_t>(placed.other_by) >= from) placed.has_other = false;
   }
+  // A plane an earlier group placed and a re-placed one took over (it knew more) goes back to
+  // the earlier group's placement: otherwise the re-placed group lost that link and was placed
+  // without it (§II.D chains groups through shared planes), from its members' first sightings
+  // when it had no other (a door jamb's group turned 3.7 degrees in one iteration).
+  for (size_t g : earlier) PlaceMembers(state, g, options);
   const Pose2 start{options.start_pose.x, options.start_pose.y, options.start_pose.yaw};
   for (size_t g = from; g < state.groups.size(); ++g) {
     Group& group = state.groups[g];

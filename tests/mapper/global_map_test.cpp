@@ -1,0 +1,133 @@
+// §II.D placing a group on the global map: through the planes it shares with groups placed
+// before it, also when it re-places one of them itself because it knows more about it; and,
+// where those links leave its position open, from a sighting made while the walls fixed the
+// pose (§II.E: the motion model carries a position the walls do not give).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <optional>
+
+#include "ideal_segmenter.hpp"
+#include "relplane/mapper/global_map.hpp"
+
+namespace relplane::mapper {
+namespace {
+
+using Eigen::Vector2d;
+
+Placement Placed(double alpha, const Vector2d& point, int ref, Known known) {
+  Placement p;
+  p.alpha = alpha, p.point = point, p.ref = ref, p.known = known;
+  return p;
+}
+
+// A group whose relative map is built (not dirty): its members and their relative placements,
+// the first one the basis.
+Group Built(int64_t id, int64_t created, const std::map<int64_t, Placement>& relative,
+            int64_t basis) {
+  Group group;
+  group.id = id;
+  group.created = created;
+  for (const auto& [member, placed] : relative) group.members.push_back(member);
+  group.dirty = false;
+  group.relative.basis = basis;
+  group.relative.members = relative;
+  return group;
+}
+
+TEST(GlobalMap, AGroupRePlacedKeepsTheLinkItTookOverFromAnEarlierGroup) {
+  // Seen from the start pose: wall A across the view (x = 2) and wall B along its left side
+  // (y = 1), meeting at the corner (2, 1). Group 0 mapped A's line with the map's heading turned
+  // by 0.05 rad (what the map had accumulated by then; the map must stay consistent with it).
+  // Group 1 holds A and B and knows A's end at the corner, more than group 0 knew, so it placed
+  // A itself. When group 1 is placed again it must still be placed through A as group 0 mapped
+  // it, not from its members' first sightings as if it were the first group: B then lies at the
+  // map's heading, 0.05 rad.
+  const double heading = 0.05;
+  const Observation a = *MakeObservation(testing::WallSeen({2, -1}, {2, 1}), 0, 0.3);
+  const Observation b = *MakeObservation(testing::WallSeen({-1, 1}, {2, 1}), 0, 0.3);
+  ASSERT_NEAR(a.Alpha(), -M_PI / 2, 1e-9);
+  ASSERT_NEAR(b.Alpha(), 0.0, 1e-9);
+  MapperState state;
+  state.first_iteration = 0;
+  state.poses[0] = {0.0, 0.0, 0.0};
+  state.fixed_poses.insert(0);
+  state.planes.emplace(0, RltPlane(0, a, 0.05, 1000));
+  state.planes.emplace(1, RltPlane(1, b, 0.05, 1000));
+  state.Plane(0)->groups = {0, 1};
+  state.Plane(1)->groups = {1};
+
+  Group first = Built(0, 0, {{0, Placed(-M_PI / 2, {2, 0}, -1, Known::kLine)}}, 0);
+  first.placement = {0.0, 0.0, heading};
+  // The frame of the start pose: A's corner end is its edge 0 (t = (0, -1)), B's its edge 1.
+  Group second = Built(1, 1,
+                       {{0, Placed(-M_PI / 2, {2, 1}, 0, Known::kPoint)},
+                        {1, Placed(0.0, {2, 1}, 1, Known::kPoint)}},
+                       0);
+  second.placement = {0.0, 0.0, heading};
+  state.groups = {first, second};
+  // As group 1 last placed them.
+  const Eigen::Rotation2Dd turn(heading);
+  state.global = {{0, Placed(heading - M_PI / 2, turn * Vector2d(2, 1), 0, Known::kPoint)},
+                  {1, Placed(heading, turn * Vector2d(2, 1), 1, Known::kPoint)}};
+  state.placed_by = {{0, 1}, {1, 1}};
+
+  BuildGlobalMap(state, 1, MapperOptions{});  // group 1 changed: placed again
+  ASSERT_TRUE(state.global.count(1));
+  EXPECT_NEAR(state.global.at(1).alpha, heading, 1e-9);
+  EXPECT_NEAR(state.global.at(0).alpha, heading - M_PI / 2, 1e-9);
+}
+
+TEST(GlobalMap, AGroupKnowingItsBasisByItsLineIsPlacedFromAPoseTheWallsFixed) {
+  // Turning in place at the origin, 0.05 rad an iteration, in front of wall W (x = 3). Group 0
+  // mapped the side wall S (y = -1). Until iteration 5 the walls fixed the pose; then only W's
+  // line and S's orientation were in view and the motion model let the position drift 2 cm
+  // across W (x = -0.02). Group 1, made at iteration 10, knows W by its line and S by its
+  // orientation: its links leave its position open, so its prior decides where W goes. That
+  // must come from W as seen from a pose the walls fixed, not from the drifted one.
+  const Vector2d w0(3, -2), w1(3, 2), s0(-1, -1), s1(4, -1);
+  const auto seen = [](const Vector2d& a, const Vector2d& b, const geometry::Pose2& pose,
+                       int64_t k) {
+    const geometry::Pose2 inv = pose.Inverse();
+    return *MakeObservation(testing::WallSeen(inv * a, inv * b), k, 0.3);
+  };
+  MapperState state;
+  state.first_iteration = 0;
+  std::optional<RltPlane> wall, side;
+  for (int64_t k = 0; k <= 10; ++k) {
+    const geometry::Pose2 truth{0.0, 0.0, 0.05 * static_cast<double>(k)};
+    const Observation w = seen(w0, w1, truth, k), s = seen(s0, s1, truth, k);
+    if (k == 0) {
+      wall.emplace(0, w, 0.05, 1000);
+      side.emplace(1, s, 0.05, 1000);
+    } else {
+      wall->Add(w);
+      side->Add(s);
+    }
+    state.poses[k] = {k <= 5 ? 0.0 : -0.02, 0.0, truth.yaw};
+    if (k <= 5) state.fixed_poses.insert(k);
+  }
+  wall->groups = {1};
+  side->groups = {0, 1};
+  const double wall_alpha = wall->Observations().front().Alpha();
+  const double side_alpha = side->Observations().front().Alpha();
+  state.planes.emplace(0, std::move(*wall));
+  state.planes.emplace(1, std::move(*side));
+  const Group first = Built(0, 0, {{1, Placed(side_alpha, {0, -1}, -1, Known::kLine)}}, 1);
+  const Group made_later =
+      Built(1, 10,
+            {{0, Placed(0.0, {0, 0}, -1, Known::kLine)},
+             {1, Placed(side_alpha - wall_alpha, {0, 0}, -1, Known::kAngle)}},
+            0);
+  state.groups = {first, made_later};
+  state.global = {{1, Placed(side_alpha, {0, -1}, -1, Known::kLine)}};
+  state.placed_by = {{1, 0}};
+  BuildGlobalMap(state, 1, MapperOptions{});
+  ASSERT_TRUE(state.global.count(0));
+  const Placement& placed = state.global.at(0);
+  EXPECT_NEAR(std::abs(NormalOf(placed.alpha).dot(placed.point)), 3.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace relplane::mapper
