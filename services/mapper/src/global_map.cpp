@@ -261,8 +261,10 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
   std::set<size_t> earlier;  // groups before `from` that share a plane a re-placed group placed
   for (auto it = state.placed_by.begin(); it != state.placed_by.end();) {
     if (static_cast<size_t>(it->second) >= from) {
-      for (int64_t g : state.Plane(it->first)->groups) {
-        if (static_cast<size_t>(g) < from) earlier.insert(static_cast<size_t>(g));
+      if (const RltPlane* plane = state.Plane(it->first)) {
+        for (int64_t g : plane->groups) {
+          if (static_cast<size_t>(g) < from) earlier.insert(static_cast<size_t>(g));
+        }
       }
       state.global.erase(it->first);
       it = state.placed_by.erase(it);
