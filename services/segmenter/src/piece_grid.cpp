@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "relplane/segmenter/spacing.hpp"
-#include "simd.hpp"
 
 namespace relplane::segmenter {
 namespace {
@@ -17,7 +16,6 @@ int32_t Find(std::vector<int32_t>* parent, int32_t c) {
   }
   return c;
 }
-
 
 // Reach of a cell in cells: cell_reach, or reach_spacings expected sample spacings at the
 // range of the cell's centre on its plane, at most max_reach.
@@ -36,124 +34,7 @@ int Reach(const Cell& c, const PlaneGrid& g, const EmPlane& plane, const Options
   return std::max(base, whole + (static_cast<float>(whole) < cells));
 }
 
-// Each labelled point's coordinates in its plane's grid (a, b) and its distance to the plane
-// (e); unlabelled points get values no one reads.
-RELPLANE_SIMD_CLONES void Project(size_t n, const float* __restrict x, const float* __restrict y,
-                                  const float* __restrict z, const int32_t* __restrict label,
-                                  const PlaneTable& t, float* __restrict a, float* __restrict b,
-                                  float* __restrict e) {
-  const float *ox = t.ox.data(), *oy = t.oy.data(), *oz = t.oz.data();
-  const float *ux = t.ux.data(), *uy = t.uy.data(), *uz = t.uz.data();
-  const float *vx = t.vx.data(), *vy = t.vy.data(), *vz = t.vz.data();
-  const float *nx = t.nx.data(), *ny = t.ny.data(), *nz = t.nz.data();
-  for (size_t i = 0; i < n; ++i) {
-    const int32_t j = label[i] + 1;
-    const float qx = x[i] - ox[j], qy = y[i] - oy[j], qz = z[i] - oz[j];
-    a[i] = ux[j] * qx + uy[j] * qy + uz[j] * qz;
-    b[i] = vx[j] * qx + vy[j] * qy + vz[j] * qz;
-    e[i] = nx[j] * qx + ny[j] * qy + nz[j] * qz;
-  }
-}
-
-// The bounds of plane `plane`'s points in its grid and their count, in g. One pass per plane
-// over the whole cloud, in kLanes independent lanes so it vectorises: min and max are exact,
-// the bounds are those of any order.
-RELPLANE_SIMD_CLONES void Bounds(size_t n, const int32_t* __restrict label, int32_t plane,
-                                 const float* __restrict a, const float* __restrict b,
-                                 PlaneGrid* g) {
-  constexpr size_t kLanes = 8;
-  float a_lo[kLanes], a_hi[kLanes], b_lo[kLanes], b_hi[kLanes];
-  int32_t count[kLanes];
-  for (size_t l = 0; l < kLanes; ++l) {
-    a_lo[l] = b_lo[l] = kInf;
-    a_hi[l] = b_hi[l] = -kInf;
-    count[l] = 0;
-  }
-  const size_t whole = n / kLanes * kLanes;
-  for (size_t i = 0; i < whole; i += kLanes) {
-    for (size_t l = 0; l < kLanes; ++l) {
-      // Selects on locals: std::min on the lanes' references would compile to masked stores.
-      const bool in = label[i + l] == plane;
-      const float pa = a[i + l], pb = b[i + l];
-      const float lo_a = in ? pa : kInf, hi_a = in ? pa : -kInf;
-      const float lo_b = in ? pb : kInf, hi_b = in ? pb : -kInf;
-      count[l] += in;
-      a_lo[l] = lo_a < a_lo[l] ? lo_a : a_lo[l];
-      a_hi[l] = a_hi[l] < hi_a ? hi_a : a_hi[l];
-      b_lo[l] = lo_b < b_lo[l] ? lo_b : b_lo[l];
-      b_hi[l] = b_hi[l] < hi_b ? hi_b : b_hi[l];
-    }
-  }
-  for (size_t i = whole; i < n; ++i) {
-    if (label[i] != plane) continue;
-    ++count[0];
-    a_lo[0] = std::min(a_lo[0], a[i]);
-    a_hi[0] = std::max(a_hi[0], a[i]);
-    b_lo[0] = std::min(b_lo[0], b[i]);
-    b_hi[0] = std::max(b_hi[0], b[i]);
-  }
-  for (size_t l = 0; l < kLanes; ++l) {
-    g->points += count[l];
-    g->a_lo = std::min(g->a_lo, a_lo[l]);
-    g->a_hi = std::max(g->a_hi, a_hi[l]);
-    g->b_lo = std::min(g->b_lo, b_lo[l]);
-    g->b_hi = std::max(g->b_hi, b_hi[l]);
-  }
-}
-
-// Each point's slot in its plane's grid, -1 for none.
-RELPLANE_SIMD_CLONES void Slots(size_t n, const int32_t* __restrict label,
-                               const float* __restrict a, const float* __restrict b,
-                               const PlaneTable& t, int32_t* __restrict slot) {
-  const float *a_lo = t.a_lo.data(), *b_lo = t.b_lo.data(), *inv_cell = t.inv_cell.data();
-  const int32_t *w1 = t.w1.data(), *h1 = t.h1.data(), *w = t.w.data(), *base = t.base.data();
-  for (size_t i = 0; i < n; ++i) {
-    const int32_t j = label[i] + 1;
-    const int32_t fx = static_cast<int32_t>((a[i] - a_lo[j]) * inv_cell[j]);
-    const int32_t fy = static_cast<int32_t>((b[i] - b_lo[j]) * inv_cell[j]);
-    const int32_t ix = std::min(fx, w1[j]);
-    const int32_t iy = std::min(fy, h1[j]);
-    // base is -1 without a grid: its sign bits make the slot -1 (a mask, not a branch).
-    slot[i] = (base[j] + iy * w[j] + ix) | (base[j] >> 31);
-  }
-}
-
 }  // namespace
-
-void PlaneTable::Fill(const std::vector<PlaneGrid>& grids) {
-  std::vector<float>* axes[] = {&ox, &oy, &oz, &ux, &uy, &uz, &vx, &vy, &vz, &nx, &ny, &nz};
-  for (std::vector<float>* v : axes) v->assign(grids.size() + 1, 0.0f);
-  for (size_t j = 0; j < grids.size(); ++j) {
-    const PlaneGrid& g = grids[j];
-    for (int c = 0; c < 3; ++c) {
-      (*axes[c])[j + 1] = g.origin[c];
-      (*axes[3 + c])[j + 1] = g.u[c];
-      (*axes[6 + c])[j + 1] = g.v[c];
-      (*axes[9 + c])[j + 1] = g.n[c];
-    }
-  }
-}
-
-void PlaneTable::SetFrames(const std::vector<PlaneGrid>& grids) {
-  a_lo.assign(grids.size() + 1, 0.0f);
-  b_lo.assign(grids.size() + 1, 0.0f);
-  inv_cell.assign(grids.size() + 1, 0.0f);
-  w1.assign(grids.size() + 1, 0);
-  h1.assign(grids.size() + 1, 0);
-  w.assign(grids.size() + 1, 0);
-  base.assign(grids.size() + 1, -1);
-  for (size_t j = 0; j < grids.size(); ++j) {
-    const PlaneGrid& g = grids[j];
-    if (!g.used) continue;
-    a_lo[j + 1] = g.a_lo;
-    b_lo[j + 1] = g.b_lo;
-    inv_cell[j + 1] = g.inv_cell;
-    w1[j + 1] = g.w - 1;
-    h1[j + 1] = g.h - 1;
-    w[j + 1] = g.w;
-    base[j + 1] = static_cast<int32_t>(g.base);
-  }
-}
 
 void PlaneAxes(const Eigen::Vector3f& n, bool vertical, Eigen::Vector3f* u, Eigen::Vector3f* v) {
   if (vertical) {
@@ -188,14 +69,29 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   // Each point's coordinates in its plane's grid, then each plane's bounds and point count.
   const size_t k = planes.size();
   PlaneTable& table = w->table;
-  table.Fill(w->grids);
+  table.Reset(k);
+  for (size_t j = 0; j < k; ++j) {
+    const PlaneGrid& g = w->grids[j];
+    for (int c = 0; c < 3; ++c) {
+      table.frame[c][j + 1] = g.origin[c];
+      table.frame[3 + c][j + 1] = g.u[c];
+      table.frame[6 + c][j + 1] = g.v[c];
+      table.frame[9 + c][j + 1] = g.n[c];
+    }
+  }
   w->a.resize(n);
   w->b.resize(n);
   w->e.resize(n);
-  Project(n, x, y, z, labels.data(), table, w->a.data(), w->b.data(), w->e.data());
+  ProjectToGrids(n, x, y, z, labels.data(), table, w->a.data(), w->b.data(), w->e.data());
   for (size_t j = 0; j < k; ++j) {
+    const GridBounds bounds =
+        PlaneBounds(n, labels.data(), static_cast<int32_t>(j), w->a.data(), w->b.data());
     PlaneGrid& g = w->grids[j];
-    Bounds(n, labels.data(), static_cast<int32_t>(j), w->a.data(), w->b.data(), &g);
+    g.points = bounds.points;
+    g.a_lo = bounds.a_lo;
+    g.a_hi = bounds.a_hi;
+    g.b_lo = bounds.b_lo;
+    g.b_hi = bounds.b_hi;
   }
   size_t slots = 0;
   for (PlaneGrid& g : w->grids) {
@@ -221,8 +117,18 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   w->cell_of_point.resize(n);
   // Each point's slot in its plane's grid (-1 for none), held in cell_of_point for the pass
   // below.
-  table.SetFrames(w->grids);
-  Slots(n, labels.data(), w->a.data(), w->b.data(), table, w->cell_of_point.data());
+  for (size_t j = 0; j < k; ++j) {
+    const PlaneGrid& g = w->grids[j];
+    if (!g.used) continue;
+    table.a_lo[j + 1] = g.a_lo;
+    table.b_lo[j + 1] = g.b_lo;
+    table.inv_cell[j + 1] = g.inv_cell;
+    table.w1[j + 1] = g.w - 1;
+    table.h1[j + 1] = g.h - 1;
+    table.w[j + 1] = g.w;
+    table.base[j + 1] = static_cast<int32_t>(g.base);
+  }
+  GridSlots(n, labels.data(), w->a.data(), w->b.data(), table, w->cell_of_point.data());
   int32_t* __restrict cell_of = w->cell_of_point.data();
   const int32_t* __restrict label = labels.data();
   // Slots become cells, numbered in order of first appearance, and each cell counts its points.

@@ -7,6 +7,7 @@
 #include <limits>
 #include <vector>
 
+#include "grid_passes.hpp"
 #include "relplane/segmenter/cloud.hpp"
 #include "relplane/segmenter/em.hpp"
 #include "relplane/segmenter/extent.hpp"
@@ -56,21 +57,6 @@ struct PlaneGrid {
   float inv_cell = 10.0f;
   int w = 0, h = 0;
   size_t base = 0;  // offset of its slots in Buffers::slot_of
-};
-
-// The grids' frames in arrays indexed by a point's label plus one (entry 0, for unlabelled
-// points, has no grid), so the per-point passes of BinPoints look their plane up without a
-// branch and vectorise.
-struct PlaneTable {
-  // Per grid: origin, axes u, v and normal n (Fill).
-  std::vector<float> ox, oy, oz, ux, uy, uz, vx, vy, vz, nx, ny, nz;
-  // Per grid: lower bounds, inverse cell size, last column and row, width and offset of its
-  // slots, -1 for no grid (SetFrames).
-  std::vector<float> a_lo, b_lo, inv_cell;
-  std::vector<int32_t> w1, h1, w, base;
-
-  void Fill(const std::vector<PlaneGrid>& grids);
-  void SetFrames(const std::vector<PlaneGrid>& grids);
 };
 
 struct PieceWorkspace::Buffers {
