@@ -2,6 +2,8 @@
 // the sequences were built from.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "ideal_segmenter.hpp"
 #include "relplane/common/geometry.hpp"
 #include "relplane/mapper/comparison.hpp"
@@ -149,6 +151,35 @@ TEST(Comparison, LeavingAndReenteringStartsANewSubInterval) {
   c.Update(a, b, 79, options, 5);
   EXPECT_DOUBLE_EQ(c.Common(), 60.0);
   EXPECT_GT(c.From(0).PairCount(0) + c.From(0).PairCount(1), 0.0);
+}
+
+TEST(Comparison, AnIterationWithAPoorFitCountsForLittleInTheOrientation) {
+  // B, the left wall, is first a 0.1 m sliver at the edge of the view whose fit came out 3
+  // degrees off (10 iterations), then 2 m of it is in view (10 iterations, fitted well). The
+  // orientation difference weighs each iteration by both fits' orientation variance (rms over
+  // the spread of the points along the wall): the sliver's iterations count for little, where
+  // an unweighted average is 1.5 degrees off.
+  const auto fitted = [](Observation obs, double length) {
+    obs.support = static_cast<int>(1000 * length);
+    obs.rms = 0.005;
+    return obs;
+  };
+  const double off = 3.0 * M_PI / 180.0;
+  const Vector2d sliver_end = kLeft0 + 0.1 * Vector2d(std::cos(off), std::sin(off));
+  ComparisonOptions options;
+  RltPlane a(0, fitted(See({0, 0, 0}, kEnd0, kEnd1, 0, 2, 0), 2.0), 0.05, 1000);
+  RltPlane b(1, fitted(See({0, 0, 0}, kLeft0, sliver_end, 0, 0.1, 0), 0.1), 0.05, 1000);
+  for (int k = 1; k < 20; ++k) {
+    const geometry::Pose2 pose{0.03 * k, 0, 0};
+    a.Add(fitted(See(pose, kEnd0, kEnd1, 0, 2, k), 2.0));
+    b.Add(k < 10 ? fitted(See(pose, kLeft0, sliver_end, 0, 0.1, k), 0.1)
+                 : fitted(See(pose, kLeft0, kLeft1, 0, 2, k), 2.0));
+  }
+  Comparison c(0, 1);
+  c.Update(a, b, 19, options, 5);
+  const double exact = b.Latest().Alpha() - a.Latest().Alpha();
+  EXPECT_NEAR(geometry::WrapAngle(c.DeltaAlpha(0) - exact), 0.0, 0.002);
+  EXPECT_NEAR(geometry::WrapAngle(c.DeltaAlpha(1) + exact), 0.0, 0.002);
 }
 
 }  // namespace

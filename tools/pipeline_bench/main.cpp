@@ -31,6 +31,7 @@
 #include "relplane/common/cli.hpp"
 #include "relplane/common/service_runtime.hpp"
 #include "report.hpp"
+#include "stage_profile.hpp"
 
 namespace fs = std::filesystem;
 using namespace relplane;
@@ -247,6 +248,10 @@ int main(int argc, char** argv) {
       std::cerr << "making " << size.frames << " " << size.name << " clouds...\n";
       const auto clouds = MakeClouds(sim_options, size.width, size.height, size.frames,
                                      &res.points_per_frame);
+      std::cerr << "timing the segmenter and mapper alone on them...\n";
+      std::vector<std::vector<uint8_t>> plane_sets;
+      res.segmenter_compute = Summarise(ProfileSegmenter(flags.scenario, clouds, &plane_sets));
+      res.mapper_compute = Summarise(ProfileMapper(flags.scenario, plane_sets));
       for (double rate : size.rates) {
         if (StopRequested()) break;
         std::cerr << size.name << " at " << (rate > 0 ? std::to_string(int(rate)) + " Hz" : "max rate")

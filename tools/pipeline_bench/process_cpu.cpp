@@ -1,5 +1,6 @@
 #include "process_cpu.hpp"
 
+#include <time.h>
 #include <unistd.h>
 
 #include <fstream>
@@ -28,6 +29,12 @@ std::optional<double> ProcessCpuSeconds(pid_t pid) {
   std::string line;
   if (!std::getline(file, line)) return std::nullopt;
   return ParseProcStatCpuSeconds(line, sysconf(_SC_CLK_TCK));
+}
+
+double ThreadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
 }
 
 }  // namespace relplane::bench

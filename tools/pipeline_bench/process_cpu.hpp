@@ -17,4 +17,7 @@ std::optional<double> ParseProcStatCpuSeconds(const std::string& stat, long tick
 // The CPU seconds process `pid` has used so far; std::nullopt when it cannot be read (gone).
 std::optional<double> ProcessCpuSeconds(pid_t pid);
 
+// The CPU time the calling thread has used, milliseconds (nanosecond resolution).
+double ThreadCpuMs();
+
 }  // namespace relplane::bench

@@ -79,7 +79,12 @@ void WriteJson(const BenchReport& report, const Verdict& verdict, std::ostream& 
   for (size_t i = 0; i < report.resolutions.size(); ++i) {
     const auto& res = report.resolutions[i];
     out << "    {\"name\": \"" << res.name << "\", \"points_per_frame\": " << res.points_per_frame
-        << ", \"highest_rate_held_hz\": " << Fixed(HighestHeldRate(res), 1) << ", \"rates\": [\n";
+        << ", \"highest_rate_held_hz\": " << Fixed(HighestHeldRate(res), 1)
+        << ", \"compute_ms\": {";
+    JsonSummary("segmenter", res.segmenter_compute, out);
+    out << ", ";
+    JsonSummary("mapper", res.mapper_compute, out);
+    out << "}, \"rates\": [\n";
     for (size_t j = 0; j < res.rates.size(); ++j) {
       const auto& r = res.rates[j];
       out << "      {\"rate_hz\": " << Fixed(r.rate_hz, 1) << ", \"achieved_hz\": "
@@ -171,6 +176,11 @@ void PrintTable(const BenchReport& report, const Verdict& verdict, std::ostream&
     }
     out << "  " << res.name << ": highest rate held " << Fixed(HighestHeldRate(res), 0)
         << " it/s\n";
+    out << "  " << res.name << ": compute alone (one thread, CPU time) segmenter p50 "
+        << Fixed(res.segmenter_compute.p50_ms) << " p99 " << Fixed(res.segmenter_compute.p99_ms)
+        << " max " << Fixed(res.segmenter_compute.max_ms) << ", mapper p50 "
+        << Fixed(res.mapper_compute.p50_ms) << " p99 " << Fixed(res.mapper_compute.p99_ms)
+        << " max " << Fixed(res.mapper_compute.max_ms) << " ms\n";
   }
   out << "(latencies in ms; 'held' = no drops and p99 end to end within one frame period;\n"
          " cpu = CPU ms per frame of the service process, all threads)\n";

@@ -15,6 +15,10 @@ struct ResolutionResult {
   int points_per_frame = 0;
   std::vector<RateResult> rates;
   std::vector<double> e2e_ms_at_30hz;  // for the histogram
+  // Each stage's own compute per frame on the same clouds, in one process and thread (thread
+  // CPU time; see stage_profile.hpp).
+  LatencySummary segmenter_compute;
+  LatencySummary mapper_compute;
 };
 
 struct BenchReport {

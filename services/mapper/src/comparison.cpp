@@ -5,6 +5,7 @@
 #include <deque>
 
 #include "relplane/common/geometry.hpp"
+#include "relplane/mapper/localisation.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -26,6 +27,13 @@ void AddSample(const Observation& oa, const Observation& ob, SubInterval* s) {
   s->n += 1.0;
   s->sin_sum += std::sin(dalpha);
   s->cos_sum += std::cos(dalpha);
+  // The difference's variance is the sum of both fits' orientation variances: an iteration
+  // where one plane is a short piece (a door jamb, a wall the view cuts to a sliver) counts
+  // for little.
+  const double w = 1.0 / (1.0 / OrientationWeight(oa) + 1.0 / OrientationWeight(ob));
+  s->wsin_sum += w * std::sin(dalpha);
+  s->wcos_sum += w * std::cos(dalpha);
+  s->information += w;
   const Eigen::Matrix2d rat = RotationT(alpha_a), rbt = RotationT(alpha_b);
   const Vector2d nb_in_a = rat * ob.normal, na_in_b = rbt * oa.normal;
   for (int i = 0; i < 2; ++i) {
@@ -200,7 +208,7 @@ bool DirectedStats::Line(int i, double* mean) const {
 }
 
 double Comparison::DeltaAlpha(int64_t from) const {
-  const double d = std::atan2(sin_sum_, cos_sum_);
+  const double d = std::atan2(wsin_sum_, wcos_sum_);
   return from == a_ ? d : -d;
 }
 
@@ -266,9 +274,10 @@ void Comparison::Rebuild(RltPlane& a, RltPlane& b, int64_t now, const Comparison
     const Verdict v = Judge(s, options);
     frozen_[0].Add(v.stats[0]);
     frozen_[1].Add(v.stats[1]);
-    frozen_sin_ += s.sin_sum;
-    frozen_cos_ += s.cos_sum;
     frozen_n_ += s.n;
+    frozen_wsin_ += s.wsin_sum;
+    frozen_wcos_ += s.wcos_sum;
+    frozen_information_ += s.information;
     frozen_ambiguous_ += v.ambiguous ? 1 : 0;
     frozen_until_ = s.last + 1;
     open_.erase(open_.begin());
@@ -279,17 +288,19 @@ void Comparison::Summarise(RltPlane& a, RltPlane& b, int64_t now,
                            const ComparisonOptions& options) {
   total_[0] = frozen_[0];
   total_[1] = frozen_[1];
-  sin_sum_ = frozen_sin_;
-  cos_sum_ = frozen_cos_;
   common_ = frozen_n_;
+  wsin_sum_ = frozen_wsin_;
+  wcos_sum_ = frozen_wcos_;
+  information_ = frozen_information_;
   ambiguous_ = frozen_ambiguous_;
   for (const SubInterval& s : open_) {
     const Verdict v = Judge(s, options);
     total_[0].Add(v.stats[0]);
     total_[1].Add(v.stats[1]);
-    sin_sum_ += s.sin_sum;
-    cos_sum_ += s.cos_sum;
     common_ += s.n;
+    wsin_sum_ += s.wsin_sum;
+    wcos_sum_ += s.wcos_sum;
+    information_ += s.information;
     ambiguous_ += v.ambiguous ? 1 : 0;
     if (v.static_a[0] && v.static_a[1]) a.MarkFull(s.first, s.last);
     if (v.static_b[0] && v.static_b[1]) b.MarkFull(s.first, s.last);

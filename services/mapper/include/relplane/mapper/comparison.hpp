@@ -47,6 +47,11 @@ struct SubInterval {
   double n = 0.0;
   double sin_sum = 0.0;
   double cos_sum = 0.0;
+  // The orientation difference weighted by each sample's information (both fits' orientation
+  // variances), and that information.
+  double wsin_sum = 0.0;
+  double wcos_sum = 0.0;
+  double information = 0.0;
   // [0]: B seen from A, [1]: A seen from B. Per pairing: x, y, x^2, y^2 sums.
   double pair[2][2][2][4] = {};
   double npair[2][2] = {};  // samples of pairing [i][j] where neither edge was cut
@@ -71,8 +76,11 @@ class Comparison {
   int64_t Other(int64_t id) const { return id == a_ ? b_ : a_; }
   // The other plane as seen from plane `from` (which must be A() or B()).
   const DirectedStats& From(int64_t from) const { return from == a_ ? total_[0] : total_[1]; }
-  // Frame angle of the other plane minus that of `from`: the averaged orientation difference.
+  // Frame angle of the other plane minus that of `from`: the orientation difference averaged
+  // over the common interval, each iteration weighted by how well both fits fix it.
   double DeltaAlpha(int64_t from) const;
+  // Information (rad^-2) of DeltaAlpha: the sum of the iterations' weights.
+  double Information() const { return information_; }
   // Iterations in the common interval so far.
   double Common() const { return common_; }
   // Sub-intervals dropped as ambiguous (§II.C parallel planes) so far.
@@ -87,9 +95,10 @@ class Comparison {
   int64_t b_;
   // Frozen sub-intervals are folded into these sums and never recomputed (bounded cost).
   DirectedStats frozen_[2];
-  double frozen_sin_ = 0.0;
-  double frozen_cos_ = 0.0;
   double frozen_n_ = 0.0;
+  double frozen_wsin_ = 0.0;
+  double frozen_wcos_ = 0.0;
+  double frozen_information_ = 0.0;
   int frozen_ambiguous_ = 0;
   int64_t frozen_until_ = INT64_MIN;
   std::vector<SubInterval> open_;
@@ -97,8 +106,9 @@ class Comparison {
   int64_t phase_seen_a_ = INT64_MIN;  // latest phase start of each plane at the last update
   int64_t phase_seen_b_ = INT64_MIN;
   DirectedStats total_[2];
-  double sin_sum_ = 0.0;
-  double cos_sum_ = 0.0;
+  double wsin_sum_ = 0.0;
+  double wcos_sum_ = 0.0;
+  double information_ = 0.0;
   double common_ = 0.0;
   int ambiguous_ = 0;
 };
