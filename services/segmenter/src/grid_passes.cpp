@@ -1,7 +1,10 @@
 #include "grid_passes.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <type_traits>
 
+#include "relplane/segmenter/spacing.hpp"
 #include "simd.hpp"
 
 #if defined(__GNUC__) && defined(__x86_64__)
@@ -12,8 +15,7 @@
 namespace relplane::segmenter {
 namespace {
 
-constexpr size_t kChunk = 8;      // table entries per AVX2 register
-constexpr size_t kMaxChunks = 4;  // tables of up to 32 entries are looked up in registers
+constexpr size_t kChunk = 8;  // table entries per AVX2 register
 
 // The scalar passes: the fallback, and the last points after whole blocks of kChunk.
 void ProjectScalar(size_t begin, size_t n, const float* __restrict x, const float* __restrict y,
@@ -40,8 +42,29 @@ void SlotsScalar(size_t begin, size_t n, const int32_t* __restrict label, const 
   }
 }
 
+int32_t ReachScalar(const Cell& c, const PlaneTable& t, const ReachRule& rule) {
+  const size_t j = static_cast<size_t>(c.plane) + 1;
+  const float* f[9];
+  for (int k = 0; k < 9; ++k) f[k] = t.frame[k].data();
+  const float sa = t.a_lo[j] + (c.ix + 0.5f) * t.cell[j];
+  const float sb = t.b_lo[j] + (c.iy + 0.5f) * t.cell[j];
+  // The cell's centre and its range, added in the order Eigen adds g.origin + sa g.u + sb g.v
+  // and its norm (x x + (y y + z z)).
+  const float cx = (f[0][j] + sa * f[3][j]) + sb * f[6][j];
+  const float cy = (f[1][j] + sa * f[4][j]) + sb * f[7][j];
+  const float cz = (f[2][j] + sa * f[5][j]) + sb * f[8][j];
+  const float range = std::sqrt(cx * cx + (cy * cy + cz * cz));
+  const float spacing = SampleSpacing(rule.angular_step, range, t.distance[j]);
+  const float reach = std::min(rule.max_reach, rule.reach_spacings * spacing);
+  // ceil of a non-negative float: the baseline x86-64 build has no rounding instruction and
+  // would emulate std::ceil in several.
+  const float cells = reach / t.cell[j];
+  const int32_t whole = static_cast<int32_t>(cells);
+  return std::max(rule.cell_reach, whole + (static_cast<float>(whole) < cells));
+}
+
 #if RELPLANE_AVX2_LOOKUP
-// The table lookups of eight points at once: a table of up to kMaxChunks * 8 entries sits in
+// The table lookups of eight points at once: a table of up to 32 entries (4 chunks) sits in
 // registers and each point's entry is picked by a permute (vpermps takes the index's low three
 // bits) from every chunk, then blended by the chunk the index falls in. Gathers from memory
 // would cost several times as much. The arithmetic is the scalar passes', operation for
@@ -143,10 +166,80 @@ template <size_t kChunks>
   return i;
 }
 
-// Chunks of the table in registers, 0 when the lookups cannot run there.
-size_t Avx2Chunks(const PlaneTable& t) {
-  const size_t chunks = t.base.size() / kChunk;
-  return chunks <= kMaxChunks && __builtin_cpu_supports("avx2") ? chunks : 0;
+// ReachScalar for eight cells at once, operation for operation.
+template <size_t kChunks>
+[[gnu::target("avx2")]] size_t ReachAvx2(const std::vector<Cell>& cells, const PlaneTable& t,
+                                         const ReachRule& rule, int32_t* reach) {
+  __m256 frame[9][kChunks], a_lo[kChunks], b_lo[kChunks], cell[kChunks], distance[kChunks];
+  for (int f = 0; f < 9; ++f) LoadTable<kChunks>(t.frame[f], frame[f]);
+  LoadTable<kChunks>(t.a_lo, a_lo);
+  LoadTable<kChunks>(t.b_lo, b_lo);
+  LoadTable<kChunks>(t.cell, cell);
+  LoadTable<kChunks>(t.distance, distance);
+  static_assert(sizeof(Cell) == 3 * sizeof(int32_t), "cells are read as int32 triples");
+  const __m256i stride = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
+  const __m256 half = _mm256_set1_ps(0.5f), zero = _mm256_setzero_ps();
+  const __m256 one = _mm256_set1_ps(1.0f), min_cos = _mm256_set1_ps(kMinCosIncidence);
+  const __m256 step = _mm256_set1_ps(rule.angular_step);
+  const __m256 spacings = _mm256_set1_ps(rule.reach_spacings);
+  const __m256 max_reach = _mm256_set1_ps(rule.max_reach);
+  const __m256i cell_reach = _mm256_set1_epi32(rule.cell_reach);
+  const __m256 sign = _mm256_set1_ps(-0.0f);
+  size_t c = 0;
+  for (; c + kChunk <= cells.size(); c += kChunk) {
+    const int* first = &cells[c].plane;
+    const __m256i j =
+        _mm256_add_epi32(_mm256_i32gather_epi32(first, stride, 4), _mm256_set1_epi32(1));
+    const __m256 ix = _mm256_cvtepi32_ps(_mm256_i32gather_epi32(first + 1, stride, 4));
+    const __m256 iy = _mm256_cvtepi32_ps(_mm256_i32gather_epi32(first + 2, stride, 4));
+    const Lookup<kChunks> at(j);
+    const __m256 size = at.Pick(cell, j);
+    const __m256 sa = _mm256_add_ps(at.Pick(a_lo, j), _mm256_mul_ps(_mm256_add_ps(ix, half), size));
+    const __m256 sb = _mm256_add_ps(at.Pick(b_lo, j), _mm256_mul_ps(_mm256_add_ps(iy, half), size));
+    __m256 centre[3];
+    for (int k = 0; k < 3; ++k) {
+      centre[k] = _mm256_add_ps(
+          _mm256_add_ps(at.Pick(frame[k], j), _mm256_mul_ps(sa, at.Pick(frame[3 + k], j))),
+          _mm256_mul_ps(sb, at.Pick(frame[6 + k], j)));
+    }
+    const __m256 range = _mm256_sqrt_ps(_mm256_add_ps(
+        _mm256_mul_ps(centre[0], centre[0]),
+        _mm256_add_ps(_mm256_mul_ps(centre[1], centre[1]), _mm256_mul_ps(centre[2], centre[2]))));
+    // SampleSpacing: max and min in the operand order of std::max / std::min.
+    const __m256 ratio = _mm256_div_ps(_mm256_andnot_ps(sign, at.Pick(distance, j)), range);
+    const __m256 cos_incidence = _mm256_max_ps(
+        _mm256_blendv_ps(one, ratio, _mm256_cmp_ps(range, zero, _CMP_GT_OQ)), min_cos);
+    const __m256 spacing =
+        _mm256_div_ps(_mm256_mul_ps(step, range), _mm256_min_ps(cos_incidence, one));
+    const __m256 metres = _mm256_min_ps(_mm256_mul_ps(spacings, spacing), max_reach);
+    const __m256 whole_cells = _mm256_div_ps(metres, size);
+    const __m256i whole = _mm256_cvttps_epi32(whole_cells);
+    const __m256i up =
+        _mm256_castps_si256(_mm256_cmp_ps(_mm256_cvtepi32_ps(whole), whole_cells, _CMP_LT_OQ));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(reach + c),
+                        _mm256_max_epi32(cell_reach, _mm256_sub_epi32(whole, up)));
+  }
+  return c;
+}
+
+// Runs kernel(chunks) with the table's chunks as a compile-time constant when the CPU has AVX2
+// and the table fits in registers; returns how many items it did (0: none, the scalar pass
+// does them all).
+template <typename Kernel>
+size_t OnAvx2(const PlaneTable& t, Kernel&& kernel) {
+  if (!__builtin_cpu_supports("avx2")) return 0;
+  switch (t.base.size() / kChunk) {
+    case 1:
+      return kernel(std::integral_constant<size_t, 1>{});
+    case 2:
+      return kernel(std::integral_constant<size_t, 2>{});
+    case 3:
+      return kernel(std::integral_constant<size_t, 3>{});
+    case 4:
+      return kernel(std::integral_constant<size_t, 4>{});
+    default:
+      return 0;
+  }
 }
 #endif
 
@@ -155,31 +248,31 @@ size_t Avx2Chunks(const PlaneTable& t) {
 void PlaneTable::Reset(size_t planes) {
   const size_t size = (planes + 1 + kChunk - 1) / kChunk * kChunk;
   for (std::vector<float>& v : frame) v.assign(size, 0.0f);
-  for (std::vector<float>* v : {&a_lo, &b_lo, &inv_cell}) v->assign(size, 0.0f);
+  for (std::vector<float>* v : {&a_lo, &b_lo, &inv_cell, &cell, &distance}) v->assign(size, 0.0f);
   for (std::vector<int32_t>* v : {&w1, &h1, &w}) v->assign(size, 0);
   base.assign(size, -1);
 }
 
+void CellReach(const std::vector<Cell>& cells, const PlaneTable& table, const ReachRule& rule,
+               int32_t* reach) {
+#if RELPLANE_AVX2_LOOKUP
+  const size_t done = OnAvx2(table, [&](auto chunks) {
+    return ReachAvx2<decltype(chunks)::value>(cells, table, rule, reach);
+  });
+#else
+  const size_t done = 0;
+#endif
+  for (size_t c = done; c < cells.size(); ++c) reach[c] = ReachScalar(cells[c], table, rule);
+}
+
 void ProjectToGrids(size_t n, const float* x, const float* y, const float* z, const int32_t* label,
                     const PlaneTable& table, float* a, float* b, float* e) {
-  size_t done = 0;
 #if RELPLANE_AVX2_LOOKUP
-  switch (Avx2Chunks(table)) {
-    case 1:
-      done = ProjectAvx2<1>(n, x, y, z, label, table, a, b, e);
-      break;
-    case 2:
-      done = ProjectAvx2<2>(n, x, y, z, label, table, a, b, e);
-      break;
-    case 3:
-      done = ProjectAvx2<3>(n, x, y, z, label, table, a, b, e);
-      break;
-    case 4:
-      done = ProjectAvx2<4>(n, x, y, z, label, table, a, b, e);
-      break;
-    default:
-      break;
-  }
+  const size_t done = OnAvx2(table, [&](auto chunks) {
+    return ProjectAvx2<decltype(chunks)::value>(n, x, y, z, label, table, a, b, e);
+  });
+#else
+  const size_t done = 0;
 #endif
   ProjectScalar(done, n, x, y, z, label, table, a, b, e);
 }
@@ -234,24 +327,12 @@ RELPLANE_SIMD_CLONES GridBounds PlaneBounds(size_t n, const int32_t* __restrict 
 
 void GridSlots(size_t n, const int32_t* label, const float* a, const float* b,
                const PlaneTable& table, int32_t* slot) {
-  size_t done = 0;
 #if RELPLANE_AVX2_LOOKUP
-  switch (Avx2Chunks(table)) {
-    case 1:
-      done = SlotsAvx2<1>(n, label, a, b, table, slot);
-      break;
-    case 2:
-      done = SlotsAvx2<2>(n, label, a, b, table, slot);
-      break;
-    case 3:
-      done = SlotsAvx2<3>(n, label, a, b, table, slot);
-      break;
-    case 4:
-      done = SlotsAvx2<4>(n, label, a, b, table, slot);
-      break;
-    default:
-      break;
-  }
+  const size_t done = OnAvx2(table, [&](auto chunks) {
+    return SlotsAvx2<decltype(chunks)::value>(n, label, a, b, table, slot);
+  });
+#else
+  const size_t done = 0;
 #endif
   SlotsScalar(done, n, label, a, b, table, slot);
 }

@@ -9,6 +9,12 @@
 
 namespace relplane::segmenter {
 
+// Per occupied cell: where it is.
+struct Cell {
+  int32_t plane = 0;
+  int ix = 0, iy = 0;
+};
+
 // The planes' grid frames in arrays indexed by a point's label plus one: entry 0 (unlabelled
 // points) and the padding have no grid. The passes look a point's plane up without a branch.
 struct PlaneTable {
@@ -18,6 +24,8 @@ struct PlaneTable {
   // its slots (-1: no grid).
   std::vector<float> a_lo, b_lo, inv_cell;
   std::vector<int32_t> w1, h1, w, base;
+  // Per grid: its cell size, and the distance of its plane from the sensor (for the reach).
+  std::vector<float> cell, distance;
 
   // Room for `planes` planes and the unlabelled entry, padded to whole chunks of 8 entries;
   // every entry cleared (no grid).
@@ -46,5 +54,19 @@ GridBounds PlaneBounds(size_t n, const int32_t* label, int32_t plane, const floa
 // clamped to the grid), -1 for a point with no grid.
 void GridSlots(size_t n, const int32_t* label, const float* a, const float* b,
                const PlaneTable& table, int32_t* slot);
+
+// What sets a cell's reach (see Options::cell_reach, reach_spacings, max_reach).
+struct ReachRule {
+  int cell_reach = 2;           // cells, at least
+  float reach_spacings = 0.0f;  // > 0
+  float max_reach = 0.0f;       // metres
+  float angular_step = 0.0f;    // radians, > 0
+};
+
+// Each cell's reach in cells: the rule's reach_spacings expected sample spacings
+// (SampleSpacing) at the range of the cell's centre, at most max_reach, rounded up to whole
+// cells and at least cell_reach.
+void CellReach(const std::vector<Cell>& cells, const PlaneTable& table, const ReachRule& rule,
+               int32_t* reach);
 
 }  // namespace relplane::segmenter

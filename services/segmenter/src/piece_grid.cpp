@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "relplane/segmenter/spacing.hpp"
-
 namespace relplane::segmenter {
 namespace {
 
@@ -15,23 +13,6 @@ int32_t Find(std::vector<int32_t>* parent, int32_t c) {
     c = p[c];
   }
   return c;
-}
-
-// Reach of a cell in cells: cell_reach, or reach_spacings expected sample spacings at the
-// range of the cell's centre on its plane, at most max_reach.
-int Reach(const Cell& c, const PlaneGrid& g, const EmPlane& plane, const Options& options,
-          float angular_step) {
-  const int base = std::max(1, options.cell_reach);
-  if (angular_step <= 0.0f || options.reach_spacings <= 0.0f) return base;
-  const Eigen::Vector3f centre =
-      g.origin + (g.a_lo + (c.ix + 0.5f) * g.cell) * g.u + (g.b_lo + (c.iy + 0.5f) * g.cell) * g.v;
-  const float spacing = SampleSpacing(angular_step, centre.norm(), plane.d);
-  const float reach = std::min(options.max_reach, options.reach_spacings * spacing);
-  // ceil of a non-negative float: the baseline x86-64 build has no rounding instruction and
-  // would emulate std::ceil in several.
-  const float cells = reach / g.cell;
-  const int whole = static_cast<int>(cells);
-  return std::max(base, whole + (static_cast<float>(whole) < cells));
 }
 
 }  // namespace
@@ -255,12 +236,25 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
   const int32_t num_cells = static_cast<int32_t>(cells.size());
   w->parent.resize(num_cells);
   for (int32_t c = 0; c < num_cells; ++c) w->parent[c] = c;
-  std::vector<int>& reach = w->reach;
-  reach.assign(num_cells, 0);
+  // Each solid cell's reach: cell_reach, or reach_spacings expected sample spacings at the
+  // range of the cell's centre on its plane, at most max_reach.
+  std::vector<int32_t>& reach = w->reach;
+  reach.resize(num_cells);
+  const int base = std::max(1, options.cell_reach);
+  if (angular_step <= 0.0f || options.reach_spacings <= 0.0f) {
+    std::fill(reach.begin(), reach.end(), base);
+  } else {
+    PlaneTable& table = w->table;
+    for (size_t j = 0; j < planes.size(); ++j) {
+      table.cell[j + 1] = w->grids[j].cell;
+      table.distance[j + 1] = planes[j].d;
+    }
+    CellReach(cells, table,
+              ReachRule{base, options.reach_spacings, options.max_reach, angular_step},
+              reach.data());
+  }
   for (int32_t c = 0; c < num_cells; ++c) {
-    if (w->counts[c].solid == 0) continue;
-    const Cell& cell = cells[c];
-    reach[c] = Reach(cell, w->grids[cell.plane], planes[cell.plane], options, angular_step);
+    if (w->counts[c].solid == 0) reach[c] = 0;
   }
   // Two cells connect when each lies within the other's reach; the earlier of the two in the
   // grid's row order finds the later one in the half of its neighbourhood that follows it.

@@ -32,12 +32,6 @@ struct alignas(64) CellMoments {
   float e_lo = kInf, e_hi = -kInf;
 };
 
-// Per occupied cell: where it is.
-struct Cell {
-  int32_t plane = 0;
-  int ix = 0, iy = 0;
-};
-
 // Per occupied cell, second pass: the moments of its points beyond the trim of the piece's first
 // fit (about the cell's reference point), and the extreme points along the piece's own axes
 // (for a cell on the piece's boundary).
@@ -76,7 +70,7 @@ struct PieceWorkspace::Buffers {
   PlaneTable table;                         // the grids, for the per-point passes
   std::vector<int32_t> piece_of;            // per cell: its piece, -1 for none
   std::vector<int32_t> parent, root_piece;  // union-find over cells
-  std::vector<int> reach;                   // per cell, in cells; 0 for cells in no piece
+  std::vector<int32_t> reach;               // per cell, in cells; 0 for cells in no piece
   std::vector<uint8_t> outer;               // per cell: first or last of its piece on a line
 };
 

@@ -21,8 +21,8 @@ float EstimateAngularStep(const Cloud& sample, size_t cloud_size);
 // the sensor, at range `range`: the step times the range, stretched by 1 / cos(incidence) =
 // range / plane_distance (bounded: a plane through the sensor is seen edge-on).
 // Inline: it is evaluated for every cell of every piece.
+constexpr float kMinCosIncidence = 0.05f;
 inline float SampleSpacing(float angular_step, float range, float plane_distance) {
-  constexpr float kMinCosIncidence = 0.05f;
   const float cos_incidence =
       std::max(kMinCosIncidence, range > 0.0f ? std::fabs(plane_distance) / range : 1.0f);
   return angular_step * range / std::min(1.0f, cos_incidence);
