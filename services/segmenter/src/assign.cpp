@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "simd.hpp"
 
@@ -11,33 +12,54 @@ namespace {
 // Two planes whose normals differ by more than this meet in a line (a corner, not a step).
 constexpr float kCrossingAngleDeg = 20.0f;
 
-// Points are ranked in blocks that stay in L1 cache while every plane is scored against them.
-constexpr size_t kBlock = 512;
+// Points are ranked in groups of kGroup: a group's best and second-best scores and planes stay
+// in registers while every plane is scored against it.
+constexpr size_t kGroup = 8;
 
-// Scores all points against one plane and keeps the best and second-best plane per point, in
-// one pass. A score is the squared distance in units of the point's threshold. Masks and
-// min/max instead of branches so the loop vectorises (best <= second always holds). Inlined,
-// so it is built for each clone of AssignPoints.
+struct PlaneScore {
+  float nx, ny, nz, d;
+  float var;  // sigma^2
+  float inv;  // 1 / (t^2 sigma^2)
+};
+
+// Scores kGroup points against every plane and keeps the best and second-best plane per point.
+// A score is the squared distance in units of the point's threshold. Masks and min/max instead
+// of branches so the loop over the group vectorises (best <= second always holds). Inlined, so
+// it is built for each clone of AssignPoints.
 template <bool kRangeNoise>
-[[gnu::always_inline]] inline void ScoreAndRank(
-    size_t n, const float* __restrict x, const float* __restrict y, const float* __restrict z,
-    const EmPlane& plane, float t2, const float* __restrict q, int32_t id, float* __restrict b,
-    float* __restrict s2, int32_t* __restrict l, int32_t* __restrict l2) {
-  const float nx = plane.normal.x(), ny = plane.normal.y(), nz = plane.normal.z(), d = plane.d;
-  const float var = plane.sigma * plane.sigma;
-  const float inv = 1.0f / (t2 * var);
-  for (size_t i = 0; i < n; ++i) {
-    const float s = nx * x[i] + ny * y[i] + nz * z[i] + d;
-    const float sc = kRangeNoise ? s * s / (t2 * (var + q[i])) : s * s * inv;
-    const float bi = b[i], si = s2[i];
-    const int32_t li = l[i], l2i = l2[i];
-    const int32_t closer = -static_cast<int32_t>(sc < bi);
-    const int32_t second_closer = -static_cast<int32_t>(sc < si);
-    const int32_t l2_if_not = l2i ^ ((l2i ^ id) & second_closer);
-    l2[i] = l2_if_not ^ ((l2_if_not ^ li) & closer);
-    l[i] = li ^ ((li ^ id) & closer);
-    s2[i] = std::min(std::max(sc, bi), si);
-    b[i] = std::min(sc, bi);
+[[gnu::always_inline]] inline void RankGroup(const float* __restrict x, const float* __restrict y,
+                                             const float* __restrict z, const float* __restrict q,
+                                             const PlaneScore* planes, size_t k, float t2,
+                                             int32_t* __restrict label,
+                                             int32_t* __restrict second_label) {
+  float b[kGroup], s2[kGroup];
+  int32_t l[kGroup], l2[kGroup];
+  for (size_t i = 0; i < kGroup; ++i) {
+    b[i] = 1.0f;
+    s2[i] = 1.0f;
+    l[i] = -1;
+    l2[i] = -1;
+  }
+  for (size_t j = 0; j < k; ++j) {
+    const PlaneScore p = planes[j];
+    const int32_t id = static_cast<int32_t>(j);
+    for (size_t i = 0; i < kGroup; ++i) {
+      const float s = p.nx * x[i] + p.ny * y[i] + p.nz * z[i] + p.d;
+      const float sc = kRangeNoise ? s * s / (t2 * (p.var + q[i])) : s * s * p.inv;
+      const float bi = b[i], si = s2[i];
+      const int32_t li = l[i], l2i = l2[i];
+      const int32_t closer = -static_cast<int32_t>(sc < bi);
+      const int32_t second_closer = -static_cast<int32_t>(sc < si);
+      const int32_t l2_if_not = l2i ^ ((l2i ^ id) & second_closer);
+      l2[i] = l2_if_not ^ ((l2_if_not ^ li) & closer);
+      l[i] = li ^ ((li ^ id) & closer);
+      s2[i] = std::min(std::max(sc, bi), si);
+      b[i] = std::min(sc, bi);
+    }
+  }
+  for (size_t i = 0; i < kGroup; ++i) {
+    label[i] = l[i];
+    second_label[i] = l2[i];
   }
 }
 
@@ -63,39 +85,54 @@ RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmP
   // d^2 / (t^2 (sigma^2 + (k r^2)^2)): below 1 is an inlier, the smallest wins.
   const float t2 = options.inlier_sigmas * options.inlier_sigmas;
   const float k2 = options.range_noise * options.range_noise;
-  alignas(64) float best[kBlock], second[kBlock], q[kBlock];
-  alignas(64) int32_t label[kBlock], second_label[kBlock];
-  for (size_t start = 0; start < n; start += kBlock) {
-    const size_t m = std::min(kBlock, n - start);
+  std::vector<PlaneScore> scores(k);
+  for (size_t j = 0; j < k; ++j) {
+    const EmPlane& p = planes[j];
+    const float var = p.sigma * p.sigma;
+    scores[j] = PlaneScore{p.normal.x(), p.normal.y(), p.normal.z(), p.d, var, 1.0f / (t2 * var)};
+  }
+  std::vector<int32_t> second(n);
+  alignas(64) float q[kGroup] = {};
+  alignas(64) float px[kGroup], py[kGroup], pz[kGroup];
+  alignas(64) int32_t pl[kGroup], pl2[kGroup];
+  for (size_t start = 0; start < n; start += kGroup) {
+    const size_t m = std::min(kGroup, n - start);
     const float* x = cloud.x.data() + start;
     const float* y = cloud.y.data() + start;
     const float* z = cloud.z.data() + start;
-    for (size_t i = 0; i < m; ++i) {
-      best[i] = 1.0f;
-      second[i] = 1.0f;
-      label[i] = -1;
-      second_label[i] = -1;
+    int32_t* l = labels->data() + start;
+    int32_t* l2 = second.data() + start;
+    if (m < kGroup) {  // the last points, padded to a whole group
+      for (size_t i = 0; i < kGroup; ++i) {
+        px[i] = i < m ? x[i] : 0.0f;
+        py[i] = i < m ? y[i] : 0.0f;
+        pz[i] = i < m ? z[i] : 0.0f;
+      }
+      x = px;
+      y = py;
+      z = pz;
+      l = pl;
+      l2 = pl2;
     }
     if (k2 > 0.0f) {
-      for (size_t i = 0; i < m; ++i) {
+      for (size_t i = 0; i < kGroup; ++i) {
         const float r2 = x[i] * x[i] + y[i] * y[i] + z[i] * z[i];
         q[i] = k2 * r2 * r2;
       }
+      RankGroup<true>(x, y, z, q, scores.data(), k, t2, l, l2);
+    } else {
+      RankGroup<false>(x, y, z, q, scores.data(), k, t2, l, l2);
     }
-    for (size_t j = 0; j < k; ++j) {
-      const int32_t id = static_cast<int32_t>(j);
-      if (k2 > 0.0f) {
-        ScoreAndRank<true>(m, x, y, z, planes[j], t2, q, id, best, second, label, second_label);
-      } else {
-        ScoreAndRank<false>(m, x, y, z, planes[j], t2, q, id, best, second, label, second_label);
-      }
+    if (m < kGroup) {
+      std::copy(pl, pl + m, labels->data() + start);
+      std::copy(pl2, pl2 + m, second.data() + start);
     }
-    std::copy(label, label + m, labels->data() + start);
-    if (!ambiguous) continue;
-    uint8_t* amb = ambiguous->data() + start;
-    for (size_t i = 0; i < m; ++i) {
-      amb[i] = label[i] >= 0 && second_label[i] >= 0 && crossing[label[i] * k + second_label[i]];
-    }
+  }
+  if (!ambiguous) return;
+  uint8_t* amb = ambiguous->data();
+  const int32_t* label = labels->data();
+  for (size_t i = 0; i < n; ++i) {
+    amb[i] = label[i] >= 0 && second[i] >= 0 && crossing[label[i] * k + second[i]];
   }
 }
 
