@@ -31,6 +31,9 @@ struct Piece {
   Eigen::Vector3d trimmed_sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d trimmed_sum_sq = Eigen::Matrix3d::Zero();
   float trim = 0.0f;  // distance from the first fit within which points are kept
+  // How far the distance to the first fit varies over a cell of its grid: along the grid's
+  // axes (half a cell each way), and per unit of distance from the EM plane.
+  float cell_spread = 0.0f, normal_spread = 0.0f;
   Eigen::Vector3f u, v;
   float a_min = kInf, a_max = -kInf, b_min = kInf, b_max = -kInf;
 };
@@ -87,14 +90,12 @@ constexpr uint8_t kExtremes = 2;    // a boundary cell: its points may shape the
 // plane is linear, so its extremes over the cell's box (grid cell x range of distances to the
 // EM plane) are at the box's corners.
 bool WithinTrim(const PlaneGrid& g, const Cell& cell, const CellMoments& m, const Piece& p) {
-  const float half = 0.5f * g.cell;
   const Eigen::Vector3f centre = g.origin + (g.a_lo + (cell.ix + 0.5f) * g.cell) * g.u +
                                  (g.b_lo + (cell.iy + 0.5f) * g.cell) * g.v +
                                  0.5f * (m.e_lo + m.e_hi) * g.n;
   const Eigen::Vector3f& n = p.out.normal;
   const float f = n.dot(centre - p.out.centroid);
-  const float spread = half * (std::fabs(n.dot(g.u)) + std::fabs(n.dot(g.v))) +
-                       0.5f * (m.e_hi - m.e_lo) * std::fabs(n.dot(g.n));
+  const float spread = p.cell_spread + 0.5f * (m.e_hi - m.e_lo) * p.normal_spread;
   constexpr float kSlack = 1e-4f;  // metres: rounding of the cell bounds
   return std::fabs(f) + spread < p.trim - kSlack;
 }
@@ -257,6 +258,10 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
     p.vertical = std::fabs(p.out.normal.z()) < options.vertical_max_nz;
     PlaneAxes(p.out.normal, p.vertical, &p.u, &p.v);
     p.trim = kTrimSigmas * std::max(p.out.rms, options.sigma_min);
+    const PlaneGrid& g = w.grids[p.plane];
+    const float half = 0.5f * g.cell;
+    p.cell_spread = half * (std::fabs(p.out.normal.dot(g.u)) + std::fabs(p.out.normal.dot(g.v)));
+    p.normal_spread = std::fabs(p.out.normal.dot(g.n));
   }
   MarkOuterCells(static_cast<int>(pieces.size()), &w);
   PlanSecondPass(&w, &pieces);

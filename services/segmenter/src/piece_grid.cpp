@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace relplane::segmenter {
 namespace {
 
@@ -13,6 +17,47 @@ int32_t Find(std::vector<int32_t>* parent, int32_t c) {
     c = p[c];
   }
   return c;
+}
+
+// The moments of the `count` points order[0..count) about the first of them, as
+// LocalMoments::Add takes them one by one. With SSE a point's x, y, z sit in one register: its
+// sums, squares and cross products (x y, y z, z x) are three lanes of one operation each, the
+// same floats added in the same order.
+LocalMoments MomentsOf(const float* x, const float* y, const float* z, const int32_t* order,
+                       int32_t count) {
+  LocalMoments all;
+  all.ref = Eigen::Vector3f(x[order[0]], y[order[0]], z[order[0]]);
+#if defined(__SSE2__)
+  const __m128 ref = _mm_setr_ps(all.ref.x(), all.ref.y(), all.ref.z(), 0.0f);
+  __m128 sum = _mm_setzero_ps(), square = _mm_setzero_ps(), cross = _mm_setzero_ps();
+  for (int32_t k = 0; k < count; ++k) {
+    const int32_t i = order[k];
+    const __m128 q = _mm_sub_ps(_mm_setr_ps(x[i], y[i], z[i], 0.0f), ref);
+    sum = _mm_add_ps(sum, q);
+    square = _mm_add_ps(square, _mm_mul_ps(q, q));
+    cross = _mm_add_ps(cross, _mm_mul_ps(q, _mm_shuffle_ps(q, q, _MM_SHUFFLE(3, 0, 2, 1))));
+  }
+  alignas(16) float s[4], sq[4], c[4];
+  _mm_store_ps(s, sum);
+  _mm_store_ps(sq, square);
+  _mm_store_ps(c, cross);
+  all.n = count;
+  all.sx = s[0];
+  all.sy = s[1];
+  all.sz = s[2];
+  all.sxx = sq[0];
+  all.syy = sq[1];
+  all.szz = sq[2];
+  all.sxy = c[0];
+  all.syz = c[1];
+  all.sxz = c[2];
+#else
+  for (int32_t k = 0; k < count; ++k) {
+    const int32_t i = order[k];
+    all.AddAboutRef(Eigen::Vector3f(x[i], y[i], z[i]));
+  }
+#endif
+  return all;
 }
 
 }  // namespace
@@ -212,21 +257,15 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     m = CellMoments{};
     const int32_t begin = fit_start[c], end = fit_start[c + 1];
     if (begin == end) continue;
-    // About the cell's first point, as LocalMoments::Add takes them; a local, so the sums stay
-    // in registers.
-    LocalMoments all;
-    all.ref = Eigen::Vector3f(x[order[begin]], y[order[begin]], z[order[begin]]);
     float e_lo = kInf, e_hi = -kInf;
     for (int32_t k = begin; k < end; ++k) {
-      const int32_t i = order[k];
-      const float e = pe[i];
+      const float e = pe[order[k]];
       e_lo = std::min(e_lo, e);
       e_hi = std::max(e_hi, e);
-      all.AddAboutRef(Eigen::Vector3f(x[i], y[i], z[i]));
     }
     m.e_lo = e_lo;
     m.e_hi = e_hi;
-    m.all = all;
+    m.all = MomentsOf(x, y, z, order.data() + begin, end - begin);
   }
 }
 
