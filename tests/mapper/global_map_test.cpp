@@ -2,6 +2,8 @@
 // before it, also when it re-places one of them itself because it knows more about it; and,
 // where those links leave its position open, from a sighting made while the walls fixed the
 // pose (§II.E: the motion model carries a position the walls do not give).
+#include "relplane/mapper/global_map.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <optional>
 
 #include "ideal_segmenter.hpp"
-#include "relplane/mapper/global_map.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -115,11 +116,10 @@ TEST(GlobalMap, AGroupKnowingItsBasisByItsLineIsPlacedFromAPoseTheWallsFixed) {
   state.planes.emplace(0, std::move(*wall));
   state.planes.emplace(1, std::move(*side));
   const Group first = Built(0, 0, {{1, Placed(side_alpha, {0, -1}, -1, Known::kLine)}}, 1);
-  const Group made_later =
-      Built(1, 10,
-            {{0, Placed(0.0, {0, 0}, -1, Known::kLine)},
-             {1, Placed(side_alpha - wall_alpha, {0, 0}, -1, Known::kAngle)}},
-            0);
+  const Group made_later = Built(1, 10,
+                                 {{0, Placed(0.0, {0, 0}, -1, Known::kLine)},
+                                  {1, Placed(side_alpha - wall_alpha, {0, 0}, -1, Known::kAngle)}},
+                                 0);
   state.groups = {first, made_later};
   state.global = {{1, Placed(side_alpha, {0, -1}, -1, Known::kLine)}};
   state.placed_by = {{1, 0}};
@@ -127,6 +127,47 @@ TEST(GlobalMap, AGroupKnowingItsBasisByItsLineIsPlacedFromAPoseTheWallsFixed) {
   ASSERT_TRUE(state.global.count(0));
   const Placement& placed = state.global.at(0);
   EXPECT_NEAR(std::abs(NormalOf(placed.alpha).dot(placed.point)), 3.0, 1e-6);
+}
+
+TEST(GlobalMap, APriorFromSeveralWallEndsAveragesTheirSightings) {
+  // Standing at the origin, the walls fixing the pose: group 1 knows the ends of the hallway's
+  // two sides at x = 3 (walls y = 1 and y = -1) and the end wall x = 4 by its orientation only,
+  // its one link (group 0 mapped its line): its position is its prior's. The left end was seen
+  // 4 cm too far, the right one 4 cm too near (edge noise at range). The prior is the mean of
+  // what each end gives, not the latest sighting alone.
+  const Observation left = *MakeObservation(testing::WallSeen({1, 1}, {3.04, 1}), 5, 0.3);
+  const Observation right = *MakeObservation(testing::WallSeen({1, -1}, {2.96, -1}), 4, 0.3);
+  const Observation end = *MakeObservation(testing::WallSeen({4, -1}, {4, 1}), 5, 0.3);
+  const auto far_end = [](const Observation& obs) {
+    return obs.edge[1].x() > obs.edge[0].x() ? 1 : 0;
+  };
+  MapperState state;
+  state.first_iteration = 0;
+  for (int64_t k = 0; k <= 5; ++k) {
+    state.poses[k] = {0.0, 0.0, 0.0};
+    state.fixed_poses.insert(k);
+  }
+  state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
+  state.planes.emplace(1, RltPlane(1, left, 0.05, 1000));
+  state.planes.emplace(2, RltPlane(2, right, 0.05, 1000));
+  state.Plane(0)->groups = {0, 1};
+  state.Plane(1)->groups = {1};
+  state.Plane(2)->groups = {1};
+  const Placement end_line = Placed(end.Alpha(), {4, 0}, -1, Known::kLine);
+  const Group first = Built(0, 0, {{0, end_line}}, 0);
+  const Group made_later =
+      Built(1, 6,
+            {{0, Placed(end.Alpha(), {0, 0}, -1, Known::kAngle)},
+             {1, Placed(left.Alpha(), {3, 1}, far_end(left), Known::kPoint)},
+             {2, Placed(right.Alpha(), {3, -1}, far_end(right), Known::kPoint)}},
+            1);
+  state.groups = {first, made_later};
+  state.global = {{0, end_line}};
+  state.placed_by = {{0, 0}};
+  BuildGlobalMap(state, 1, MapperOptions{});
+  ASSERT_TRUE(state.global.count(1) && state.global.count(2));
+  EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-9);
+  EXPECT_NEAR(state.global.at(2).point.x(), 3.0, 1e-9);
 }
 
 }  // namespace
