@@ -19,28 +19,36 @@ int32_t Find(std::vector<int32_t>* parent, int32_t c) {
   return c;
 }
 
-// The moments of the `count` points order[0..count) about the first of them, as
-// LocalMoments::Add takes them one by one. With SSE a point's x, y, z sit in one register: its
-// sums, squares and cross products (x y, y z, z x) are three lanes of one operation each, the
-// same floats added in the same order.
-LocalMoments MomentsOf(const float* x, const float* y, const float* z, const int32_t* order,
-                       int32_t count) {
-  LocalMoments all;
+// A cell's moments of the `count` points order[0..count) about the first of them, as
+// LocalMoments::Add takes them one by one, and the range of their distances e to the EM plane.
+// With SSE a point's x, y, z, e sit in one register: its sums, squares and cross products
+// (x y, y z, z x) are three lanes of one operation each, the same floats added in the same
+// order, and e's lane keeps the minimum and maximum.
+void SumCell(const float* x, const float* y, const float* z, const float* e, const int32_t* order,
+             int32_t count, CellMoments* m) {
+  LocalMoments& all = m->all;
+  all = LocalMoments{};
   all.ref = Eigen::Vector3f(x[order[0]], y[order[0]], z[order[0]]);
 #if defined(__SSE2__)
   const __m128 ref = _mm_setr_ps(all.ref.x(), all.ref.y(), all.ref.z(), 0.0f);
   __m128 sum = _mm_setzero_ps(), square = _mm_setzero_ps(), cross = _mm_setzero_ps();
+  __m128 lo = _mm_set1_ps(kInf), hi = _mm_set1_ps(-kInf);
   for (int32_t k = 0; k < count; ++k) {
     const int32_t i = order[k];
-    const __m128 q = _mm_sub_ps(_mm_setr_ps(x[i], y[i], z[i], 0.0f), ref);
+    const __m128 p = _mm_setr_ps(x[i], y[i], z[i], e[i]);
+    const __m128 q = _mm_sub_ps(p, ref);
     sum = _mm_add_ps(sum, q);
     square = _mm_add_ps(square, _mm_mul_ps(q, q));
     cross = _mm_add_ps(cross, _mm_mul_ps(q, _mm_shuffle_ps(q, q, _MM_SHUFFLE(3, 0, 2, 1))));
+    lo = _mm_min_ps(p, lo);  // p < lo ? p : lo, as std::min(lo, p)
+    hi = _mm_max_ps(p, hi);  // p > hi ? p : hi, as std::max(hi, p)
   }
-  alignas(16) float s[4], sq[4], c[4];
+  alignas(16) float s[4], sq[4], c[4], l[4], h[4];
   _mm_store_ps(s, sum);
   _mm_store_ps(sq, square);
   _mm_store_ps(c, cross);
+  _mm_store_ps(l, lo);
+  _mm_store_ps(h, hi);
   all.n = count;
   all.sx = s[0];
   all.sy = s[1];
@@ -51,13 +59,19 @@ LocalMoments MomentsOf(const float* x, const float* y, const float* z, const int
   all.sxy = c[0];
   all.syz = c[1];
   all.sxz = c[2];
+  m->e_lo = l[3];
+  m->e_hi = h[3];
 #else
+  float e_lo = kInf, e_hi = -kInf;
   for (int32_t k = 0; k < count; ++k) {
     const int32_t i = order[k];
     all.AddAboutRef(Eigen::Vector3f(x[i], y[i], z[i]));
+    e_lo = std::min(e_lo, e[i]);
+    e_hi = std::max(e_hi, e[i]);
   }
+  m->e_lo = e_lo;
+  m->e_hi = e_hi;
 #endif
-  return all;
 }
 
 }  // namespace
@@ -254,18 +268,12 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   const float* __restrict pe = w->e.data();
   for (size_t c = 0; c < num_cells; ++c) {
     CellMoments& m = w->moments[c];
-    m = CellMoments{};
     const int32_t begin = fit_start[c], end = fit_start[c + 1];
-    if (begin == end) continue;
-    float e_lo = kInf, e_hi = -kInf;
-    for (int32_t k = begin; k < end; ++k) {
-      const float e = pe[order[k]];
-      e_lo = std::min(e_lo, e);
-      e_hi = std::max(e_hi, e);
+    if (begin == end) {
+      m = CellMoments{};
+      continue;
     }
-    m.e_lo = e_lo;
-    m.e_hi = e_hi;
-    m.all = MomentsOf(x, y, z, order.data() + begin, end - begin);
+    SumCell(x, y, z, pe, order.data() + begin, end - begin, &m);
   }
 }
 
