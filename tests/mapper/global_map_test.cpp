@@ -170,5 +170,22 @@ TEST(GlobalMap, APriorFromSeveralWallEndsAveragesTheirSightings) {
   EXPECT_NEAR(state.global.at(2).point.x(), 3.0, 1e-9);
 }
 
+TEST(GlobalMap, AWallPlacedByItsLineIsAnchoredAtThePartSeen) {
+  // A door jamb (x = 3, 0.1 m of it at y = 1.5) seen from the origin, its fit 5 degrees off about
+  // the middle of its points. Placed by its line from that one sighting, its point is the middle
+  // of the part seen, where the line is right: the foot of the perpendicular from the sensor lies
+  // 1.5 m along the jamb's line, 13 cm off the true one. The point matters wherever the line is
+  // compared with another placement of the wall in a slightly different orientation (a group
+  // placed through it as a link: n . (P_map - R P_group)).
+  const double off = 5.0 * M_PI / 180.0;
+  const Vector2d middle(3.0, 1.5), t(-std::sin(off), std::cos(off));
+  const Observation jamb =
+      *MakeObservation(testing::WallSeen(middle - 0.05 * t, middle + 0.05 * t), 0, 0.3);
+  const geometry::Pose2 from{0.0, 0.0, 0.0};
+  const Placement placed = PlacementOf(jamb, from, -1);
+  EXPECT_EQ(placed.known, Known::kLine);
+  EXPECT_NEAR((placed.point - middle).norm(), 0.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace relplane::mapper

@@ -196,7 +196,7 @@ Placement Apply(const Pose2& pose, const Placement& p) {
 Placement PlacementOf(const SeenWall& seen, int ref) {
   Placement p;
   p.alpha = seen.alpha;
-  p.point = ref >= 0 ? seen.edge[ref] : seen.foot;
+  p.point = ref >= 0 ? seen.edge[ref] : 0.5 * (seen.edge[0] + seen.edge[1]);
   p.ref = ref;
   p.known = ref >= 0 ? Known::kPoint : Known::kLine;
   return p;

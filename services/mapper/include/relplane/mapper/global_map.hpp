@@ -11,7 +11,9 @@
 namespace relplane::mapper {
 
 // The placement of a wall observed as `obs` from sensor pose `pose`, with its point at edge
-// `ref` (or at the foot of the perpendicular from the sensor when ref < 0).
+// `ref` (or, when ref < 0, at the middle of the part in view: a fit's line is as good as its
+// points only where they are, and a door jamb's, a few degrees off, was 10 cm off at the foot of
+// the perpendicular from the sensor).
 Placement PlacementOf(const Observation& obs, const geometry::Pose2& pose, int ref);
 // The same for a wall seen earlier, already in the world.
 Placement PlacementOf(const SeenWall& seen, int ref);
