@@ -13,6 +13,20 @@
 #include "relplane/mapper/relative_map.hpp"
 
 namespace relplane::mapper {
+
+namespace {
+
+// Turning on the spot (the paths' corners): the heading is seen whatever the walls leave open,
+// and a sensor turning faster than this is taken not to move on.
+constexpr double kTurnRate = 0.01;  // rad per iteration (17 deg/s at 30 Hz)
+
+bool Turning(const geometry::Pose2& from, const geometry::Pose2& to, int64_t iterations) {
+  return std::abs(std::remainder(to.yaw - from.yaw, 2.0 * M_PI)) >
+         kTurnRate * static_cast<double>(iterations);
+}
+
+}  // namespace
+
 Mapper::Mapper(MapperOptions options) : options_(std::move(options)) {
   pose_ = {options_.start_pose.x, options_.start_pose.y, options_.start_pose.yaw};
 }
@@ -24,6 +38,8 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
     state_.poses[iteration] = pose_;
     state_.fixed_poses.insert(iteration);
   }
+  predicted_ = Predict(iteration);
+  previous_iteration_ = last_iteration_;
   last_iteration_ = iteration;
   std::vector<Observation> observations;
   for (const PlaneInput& input : planes) {
@@ -76,8 +92,8 @@ std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation
         sightings.push_back({&observations[k], state_.Plane(match[k]), it->second});
       }
     }
-    geometry::Pose2 pose = pose_;
-    if (!sightings.empty()) pose = mapper::Localise(sightings, pose_, frustum_, options_.localisation).pose;
+    geometry::Pose2 pose = predicted_;
+    if (!sightings.empty()) pose = mapper::Localise(sightings, predicted_, frustum_, options_.localisation).pose;
     std::set<int64_t> taken(match.begin(), match.end());
     for (size_t k = 0; k < observations.size(); ++k) {
       if (match[k] >= 0) continue;
@@ -171,10 +187,49 @@ PoseEstimate Mapper::Localise(int64_t iteration, const std::vector<int64_t>& vis
       sightings.push_back({&plane->Latest(), plane, provisional.back()});
     }
   }
-  PoseEstimate estimate = mapper::Localise(sightings, pose_, frustum_, options_.localisation);
+  PoseEstimate estimate = mapper::Localise(sightings, predicted_, frustum_, options_.localisation);
+  if (previous_iteration_ >= 0 && Turning(pose_, estimate.pose, iteration - previous_iteration_)) {
+    // The turn starts now: the sensor did not walk on after all.
+    estimate = mapper::Localise(sightings, pose_, frustum_, options_.localisation);
+  }
   if (initializing) estimate.status = PoseStatus::kInitializing;
   if (state_.first_iteration == iteration) estimate.pose = pose_;
   return estimate;
+}
+
+geometry::Pose2 Mapper::Predict(int64_t iteration) const {
+  // Constant velocity in the sensor's frame, learnt from the poses the walls fixed in every
+  // direction: where they leave one open (a hallway between door frames) the position along it
+  // moves on instead of standing still, which left it lagging by metres until the next door
+  // frame (and then matched that frame to the wrong door).
+  constexpr int64_t kWindow = 15;    // iterations: the velocity is averaged over this span
+  constexpr int64_t kMinSpan = 10;
+  constexpr double kMaxStep = 0.1;   // m per iteration (3 m/s at 30 Hz)
+  const std::set<int64_t>& fixed = state_.fixed_poses;
+  if (fixed.empty() || last_iteration_ < 0) return pose_;
+  const int64_t i1 = *fixed.rbegin();
+  const int64_t i0 = *fixed.lower_bound(i1 - kWindow);
+  auto p0 = state_.poses.find(i0), p1 = state_.poses.find(i1);
+  if (i1 - i0 < kMinSpan || p0 == state_.poses.end() || p1 == state_.poses.end()) return pose_;
+  // Fixed poses must be consecutive enough to be one stretch of motion.
+  if (static_cast<int64_t>(std::distance(fixed.lower_bound(i0), fixed.end())) < (i1 - i0) / 2) {
+    return pose_;
+  }
+  Eigen::Vector2d step = p1->second.Rotation().inverse() *
+                         (p1->second.Translation() - p0->second.Translation()) /
+                         static_cast<double>(i1 - i0);
+  // Only the part along the heading: the platform drives forwards (the paper's robot, the
+  // simulator's paths), and a sideways part is the noise of the fixed poses, which would walk
+  // the position off along an open direction.
+  step = Eigen::Vector2d(std::clamp(step.x(), -kMaxStep, kMaxStep), 0.0);
+  auto before = state_.poses.lower_bound(last_iteration_ - 1);
+  if (before != state_.poses.end() && before->first < last_iteration_ &&
+      Turning(before->second, pose_, last_iteration_ - before->first)) {
+    return pose_;
+  }
+  const double frames = static_cast<double>(iteration - last_iteration_);
+  const Eigen::Vector2d moved = pose_.Translation() + pose_.Rotation() * step * frames;
+  return {moved.x(), moved.y(), pose_.yaw};
 }
 
 bool Mapper::TakeMapChanged() {

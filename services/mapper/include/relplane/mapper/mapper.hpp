@@ -55,12 +55,15 @@ class Mapper {
   void Compare(int64_t iteration, const std::vector<int64_t>& visible);
   void BuildMaps();
   PoseEstimate Localise(int64_t iteration, const std::vector<int64_t>& visible);
+  geometry::Pose2 Predict(int64_t iteration) const;
 
   MapperOptions options_;
   MapperState state_;
   geometry::Pose2 pose_;
+  geometry::Pose2 predicted_;  // pose_ moved on at the learnt velocity to this iteration
   LearnedFrustum frustum_;
   int64_t last_iteration_ = -1;
+  int64_t previous_iteration_ = -1;  // the iteration before last_iteration_
 };
 
 }  // namespace relplane::mapper

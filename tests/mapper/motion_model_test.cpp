@@ -1,0 +1,43 @@
+// The position along a direction the walls leave open (a hallway between door frames): it moves
+// on at the velocity learnt while the walls fixed every direction, and stands still while the
+// sensor turns on the spot.
+#include <gtest/gtest.h>
+
+#include "ideal_segmenter.hpp"
+
+namespace relplane::mapper::testing {
+namespace {
+
+// A 30 m hallway, 2 m wide, closed behind the start, whose only feature is one door recess
+// 2 m ahead of the start: past it only the two side walls are in view (an 8 m sensor sees the
+// far end from x = 22 on), so nothing fixes the position along the hallway.
+World HallwayWithOneDoor() {
+  World w;
+  w.name = "hallway with one door";
+  w.walls = {{{-1, 1}, {2, 1}}, {{2, 1}, {2, 1.3}},   {{2, 1.3}, {3, 1.3}}, {{3, 1.3}, {3, 1}},
+             {{3, 1}, {30, 1}}, {{-1, -1}, {30, -1}}, {{-1, -1}, {-1, 1}},  {{30, -1}, {30, 1}}};
+  return w;
+}
+
+TEST(MotionModel, KeepsMovingAlongAnOpenHallway) {
+  IdealSegmenter segmenter(HallwayWithOneDoor(), Frustum{});
+  Mapper mapper;
+  // 1.5 m/s for 20 m: 12 m with the position along the hallway open.
+  const RunResult r = testing::Run(mapper, segmenter, Drive({{0, 0}, {20, 0}}, 1.5, 1.0));
+  // Standing still, the estimate would end ~12 m behind.
+  EXPECT_LT(r.max_error, 0.05) << Describe(r);
+  EXPECT_GT(r.motion_model, 100) << "the hallway was not open: the test shows nothing";
+}
+
+TEST(MotionModel, StandsStillWhileTurningOnTheSpot) {
+  IdealSegmenter segmenter(HallwayWithOneDoor(), Frustum{});
+  Mapper mapper;
+  // Out, a half turn on the spot at x = 12 (3 s at 1 rad/s, where walking on at 1.5 m/s would
+  // carry the estimate 4.7 m), and back to the door.
+  const RunResult r = testing::Run(mapper, segmenter, Drive({{0, 0}, {12, 0}, {0, 0}}, 1.5, 1.0));
+  // One iteration's step (5 cm) is walked on as the turn starts, before it is seen.
+  EXPECT_LE(r.max_error, 0.051) << Describe(r);
+}
+
+}  // namespace
+}  // namespace relplane::mapper::testing
