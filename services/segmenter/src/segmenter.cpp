@@ -54,14 +54,18 @@ void Subsample(const Cloud& in, int count, uint32_t seed, Cloud* sample) {
     out = in;
     return;
   }
-  out.Reserve(count);
+  out.x.resize(count);
+  out.y.resize(count);
+  out.z.resize(count);
   const double stride = static_cast<double>(in.size()) / count;
   uint32_t state = seed * 747796405u + 2891336453u;
   for (int k = 0; k < count; ++k) {
     state = state * 1664525u + 1013904223u;  // LCG: fixed sequence, cheap
     const double jitter = (state >> 8) * (1.0 / 16777216.0);
     const size_t i = std::min(in.size() - 1, static_cast<size_t>((k + jitter) * stride));
-    out.Add(in.x[i], in.y[i], in.z[i]);
+    out.x[k] = in.x[i];
+    out.y[k] = in.y[i];
+    out.z[k] = in.z[i];
   }
 }
 
