@@ -6,6 +6,11 @@
 
 #include "simd.hpp"
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#define RELPLANE_AVX2_AMBIGUOUS 1
+#include <immintrin.h>
+#endif
+
 namespace relplane::segmenter {
 namespace {
 
@@ -15,6 +20,9 @@ constexpr float kCrossingAngleDeg = 20.0f;
 // Points are ranked in groups of kGroup: a group's best and second-best scores and planes stay
 // in registers while every plane is scored against it.
 constexpr size_t kGroup = 8;
+
+// Up to this many planes, a plane's crossing planes fit in the bits of one word.
+constexpr size_t kMaskBits = 32;
 
 struct PlaneScore {
   float nx, ny, nz, d;
@@ -62,6 +70,31 @@ template <bool kRangeNoise>
     second_label[i] = l2[i];
   }
 }
+
+#if RELPLANE_AVX2_AMBIGUOUS
+// The bit lookups of AssignPoints eight points at once: a gather of their planes' rows, the
+// same shift and mask, the results packed to bytes. Returns how many points it did.
+[[gnu::target("avx2")]] size_t AmbiguousAvx2(size_t n, const int32_t* label, const int32_t* other,
+                                             const uint32_t* row, uint8_t* amb) {
+  const __m256i one = _mm256_set1_epi32(1), five_bits = _mm256_set1_epi32(31);
+  const __m256i minus_one = _mm256_set1_epi32(-1);
+  const int* rows = reinterpret_cast<const int*>(row);
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    const __m256i j = _mm256_add_epi32(
+        _mm256_loadu_si256(reinterpret_cast<const __m256i*>(label + i)), one);
+    const __m256i o = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(other + i));
+    const __m256i bits =
+        _mm256_srlv_epi32(_mm256_i32gather_epi32(rows, j, 4), _mm256_and_si256(o, five_bits));
+    const __m256i has_other = _mm256_cmpgt_epi32(o, minus_one);  // all ones where o >= 0
+    const __m256i v = _mm256_and_si256(_mm256_and_si256(bits, one), has_other);
+    const __m128i words =
+        _mm_packs_epi32(_mm256_castsi256_si128(v), _mm256_extracti128_si256(v, 1));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(amb + i), _mm_packus_epi16(words, words));
+  }
+  return i;
+}
+#endif
 
 }  // namespace
 
@@ -129,10 +162,32 @@ RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmP
     }
   }
   if (!ambiguous) return;
-  uint8_t* amb = ambiguous->data();
-  const int32_t* label = labels->data();
+  uint8_t* __restrict amb = ambiguous->data();
+  const int32_t* __restrict label = labels->data();
+  const int32_t* __restrict other = second.data();
+  if (k < kMaskBits) {
+    // Each plane's row of `crossing` as bits, entry 0 for unlabelled points: a point is then a
+    // lookup, a shift and a mask, without a branch (the loop vectorises).
+    std::vector<uint32_t> rows(k + 1, 0);
+    for (size_t a = 0; a < k; ++a) {
+      for (size_t b = 0; b < k; ++b) rows[a + 1] |= static_cast<uint32_t>(crossing[a * k + b]) << b;
+    }
+    const uint32_t* __restrict row = rows.data();
+#if RELPLANE_AVX2_AMBIGUOUS
+    const size_t done = __builtin_cpu_supports("avx2") ? AmbiguousAvx2(n, label, other, row, amb) : 0;
+#else
+    const size_t done = 0;
+#endif
+    for (size_t i = done; i < n; ++i) {
+      // other is -1 (no second plane) or below k: shifting by (other & 31) is in range, and the
+      // mask clears the -1 case.
+      const uint32_t bits = row[label[i] + 1] >> (other[i] & 31);
+      amb[i] = static_cast<uint8_t>(bits & static_cast<uint32_t>(other[i] >= 0));
+    }
+    return;
+  }
   for (size_t i = 0; i < n; ++i) {
-    amb[i] = label[i] >= 0 && second[i] >= 0 && crossing[label[i] * k + second[i]];
+    amb[i] = label[i] >= 0 && other[i] >= 0 && crossing[label[i] * k + other[i]];
   }
 }
 
