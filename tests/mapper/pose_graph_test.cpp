@@ -134,5 +134,26 @@ TEST(PoseGraph, WallsTyingGroupsFarAlongThemDoNotTurnAnotherGroup) {
   EXPECT_NEAR(state.groups[1].placement.y, 0.0, 1e-4);
 }
 
+TEST(PoseGraph, NearlyParallelWallsDoNotPlaceAGroupAlongThem) {
+  // Group 1 shares with group 0 the two side walls of a hallway (y = 1 and y = -1), fitted
+  // 0.2 degrees apart, and their lines disagree by 3 mm across: nothing says where group 1 is
+  // along the hallway. Through the slight angle the two lines met 0.86 m away, and the solve
+  // slid group 1 there (a leg of a hallway loop slid by a door spacing, 2.8 m).
+  MapperState state;
+  for (int k = 0; k < 2; ++k) {
+    Group g;
+    g.id = k;
+    g.placement = {static_cast<double>(k), 0.0, 0.0};
+    state.groups.push_back(g);
+  }
+  const double angle = 0.2 * M_PI / 180.0;
+  AddTie(&state, 0, 0.0, {0, 1}, 1, 0.0, {-1, 1});
+  AddTie(&state, 0, angle, {0, -1}, 1, angle, {-1, -1 + 0.003});
+  OptimiseGroupPlacements(state, PoseGraphOptions{});
+  EXPECT_NEAR(state.groups[1].placement.x, 1.0, 0.01);
+  EXPECT_NEAR(state.groups[1].placement.y, 0.0, 0.003);
+  EXPECT_NEAR(state.groups[1].placement.yaw, 0.0, 1e-4);
+}
+
 }  // namespace
 }  // namespace relplane::mapper

@@ -18,8 +18,6 @@ constexpr double kEdgeGate = 0.1;     // m: motion model snaps to a mapped end t
 // rad: orientation sigma every wall has whatever its fit says (the map's own error), so the
 // best-fitting walls do not take all the weight.
 constexpr double kOrientationFloor = 0.001;
-constexpr double kOpen = 0.02;        // information below this (lines within ~11 degrees of
-                                      // parallel) leaves a direction open
 
 struct System {
   Matrix2d a = Matrix2d::Zero();
@@ -117,7 +115,7 @@ Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& 
   for (int k = 0; k < 2; ++k) {
     const Vector2d v = eig.eigenvectors().col(k);
     const double lambda = eig.eigenvalues()(k);
-    pos += v * (lambda < kOpen ? v.dot(previous)
+    pos += v * (lambda < kOpenInformation ? v.dot(previous)
                                : (v.dot(b) + prior * v.dot(previous)) / (lambda + prior));
   }
   return pos;

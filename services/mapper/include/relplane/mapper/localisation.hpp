@@ -80,6 +80,10 @@ double OrientationWeight(const Observation& obs);
 // wall seen over a few centimetres must not turn walls metres long).
 double OrientationWeight(const RltPlane& plane);
 
+// Information (smallest eigenvalue of the sum of n n^T over unit wall normals) below which
+// walls leave a direction open: lines within ~11 degrees of parallel.
+constexpr double kOpenInformation = 0.02;
+
 // Least squares a x = b for a position, with `previous` as a weak prior (weight `prior_weight`,
 // applied when the smallest information is below `min_information`). Along a direction the
 // equations leave open (walls within ~11 degrees of parallel) the previous position is kept as
