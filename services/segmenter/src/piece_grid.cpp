@@ -230,8 +230,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     // The next free place of each cell. While consecutive points share a cell, its place is
     // carried in a register (`run_at`) and written back when the run ends, so a run's points do
     // not each wait on the last one's store; a run's points load a dummy instead of their
-    // cell's place, without a branch: the index is picked by a mask (GCC compiles `same ?
-    // dummy : c` to a branch, mispredicted at most run ends).
+    // cell's place, without a branch.
     std::vector<int32_t>& next = w->parent;  // scratch
     next.assign(fit_start.begin(), fit_start.end());
     const int32_t dummy = static_cast<int32_t>(num_cells);  // next's last entry, never a cell
@@ -243,7 +242,7 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
       if (c < 0) continue;
       const bool same = c == run_cell;
       at[run_cell] = run_at;
-      const int32_t loaded = at[c ^ ((c ^ dummy) & -static_cast<int32_t>(same))];
+      const int32_t loaded = at[same ? dummy : c];
       const int32_t place = same ? run_at : loaded;
       out[place] = static_cast<int32_t>(i);
       run_at = place + 1;
