@@ -39,5 +39,20 @@ TEST(MotionModel, StandsStillWhileTurningOnTheSpot) {
   EXPECT_LE(r.max_error, 0.051) << Describe(r);
 }
 
+TEST(MotionModel, DoesNotWalkOnAcrossALongGap) {
+  // Iterations lost in a row (a dropped stream, a restarted source): what the sensor did then is
+  // unknown, so the position is not carried on at the last velocity for all of them.
+  IdealSegmenter segmenter(HallwayWithOneDoor(), Frustum{});
+  Mapper mapper;
+  const std::vector<geometry::Pose2> poses = Drive({{0, 0}, {8, 0}}, 1.5, 1.0);
+  for (size_t k = 0; k < poses.size(); ++k) {
+    mapper.Process(static_cast<int64_t>(k), segmenter.Planes(poses[k]));
+  }
+  // The same view again, a million iterations later: the sensor stood still.
+  const PoseEstimate after = mapper.Process(static_cast<int64_t>(poses.size()) + 1000000,
+                                            segmenter.Planes(poses.back()));
+  EXPECT_LT((after.pose.Translation() - poses.back().Translation()).norm(), 0.05);
+}
+
 }  // namespace
 }  // namespace relplane::mapper::testing

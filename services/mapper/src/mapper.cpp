@@ -93,7 +93,9 @@ std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation
       }
     }
     geometry::Pose2 pose = predicted_;
-    if (!sightings.empty()) pose = mapper::Localise(sightings, predicted_, frustum_, options_.localisation).pose;
+    if (!sightings.empty()) {
+      pose = mapper::Localise(sightings, predicted_, frustum_, options_.localisation).pose;
+    }
     std::set<int64_t> taken(match.begin(), match.end());
     for (size_t k = 0; k < observations.size(); ++k) {
       if (match[k] >= 0) continue;
@@ -200,13 +202,14 @@ PoseEstimate Mapper::Localise(int64_t iteration, const std::vector<int64_t>& vis
 geometry::Pose2 Mapper::Predict(int64_t iteration) const {
   // Constant velocity in the sensor's frame, learnt from the poses the walls fixed in every
   // direction: where they leave one open (a hallway between door frames) the position along it
-  // moves on instead of standing still, which left it lagging by metres until the next door
-  // frame (and then matched that frame to the wrong door).
-  constexpr int64_t kWindow = 15;    // iterations: the velocity is averaged over this span
+  // moves on instead of standing still as the §II.E motion model alone would, which left it
+  // lagging by metres until the next door frame (and then matched that frame to the wrong door).
+  constexpr int64_t kWindow = 15;  // iterations: the velocity is averaged over this span
   constexpr int64_t kMinSpan = 10;
-  constexpr double kMaxStep = 0.1;   // m per iteration (3 m/s at 30 Hz)
+  constexpr int64_t kMaxGap = 30;   // iterations lost in a row beyond which nothing is predicted
+  constexpr double kMaxStep = 0.1;  // m per iteration (3 m/s at 30 Hz)
   const std::set<int64_t>& fixed = state_.fixed_poses;
-  if (fixed.empty() || last_iteration_ < 0) return pose_;
+  if (fixed.empty() || last_iteration_ < 0 || iteration - last_iteration_ > kMaxGap) return pose_;
   const int64_t i1 = *fixed.rbegin();
   const int64_t i0 = *fixed.lower_bound(i1 - kWindow);
   auto p0 = state_.poses.find(i0), p1 = state_.poses.find(i1);
