@@ -49,8 +49,8 @@ TEST(MotionModel, DoesNotWalkOnAcrossALongGap) {
     mapper.Process(static_cast<int64_t>(k), segmenter.Planes(poses[k]));
   }
   // The same view again, a million iterations later: the sensor stood still.
-  const PoseEstimate after = mapper.Process(static_cast<int64_t>(poses.size()) + 1000000,
-                                            segmenter.Planes(poses.back()));
+  const PoseEstimate after =
+      mapper.Process(static_cast<int64_t>(poses.size()) + 1000000, segmenter.Planes(poses.back()));
   EXPECT_LT((after.pose.Translation() - poses.back().Translation()).norm(), 0.05);
 }
 
