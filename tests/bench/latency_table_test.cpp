@@ -56,7 +56,9 @@ TEST(LatencyTable, RepeatedStampKeepsTheFirst) {
 
 TEST(Judge, FailsWhenP99ExceedsTheTarget) {
   BenchReport report;
-  ResolutionResult small{"160x120", 19200, {}, {}};
+  ResolutionResult small;
+  small.name = "160x120";
+  small.points_per_frame = 19200;
   LatencyTable ok;
   for (int64_t seq = 0; seq < 100; ++seq) {
     ok.Stamp(Stage::kPublished, seq, seq * 1000);
