@@ -44,8 +44,12 @@ MapperOptions ReadMapperOptions(Reader& r) {
   grp.Read("min_common", &o.grouping.min_common);
   grp.Read("covisible_window", &o.grouping.covisible_window);
   grp.Read("recent_groups", &o.grouping.recent_groups);
+  grp.Read("max_orientation_spread", &o.grouping.max_orientation_spread);
   if (o.grouping.min_observations < 1) grp.Fail("min_observations", "must be at least 1");
   if (o.grouping.recent_groups < 1) grp.Fail("recent_groups", "must be at least 1");
+  if (!(o.grouping.max_orientation_spread > 0.0)) {
+    grp.Fail("max_orientation_spread", "must be positive");
+  }
 
   Reader cmp = r.Child("comparison");
   cmp.Read("min_samples", &o.comparison.min_samples);

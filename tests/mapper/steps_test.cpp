@@ -21,6 +21,19 @@ using Eigen::Vector3d;
 
 PlaneInput Wall(Vector2d p0, Vector2d p1) { return testing::WallSeen(p0, p1); }
 
+// Registers a sighting of the wall from a to b at iteration k as rltplane `id` (new ones join
+// the ungrouped list), as the mapper's registration would.
+void See(MapperState* state, int64_t id, int64_t k, Vector2d a, Vector2d b) {
+  Observation o = *MakeObservation(Wall(a, b), k, 0.3);
+  if (!state->planes.count(id)) {
+    state->planes.emplace(id, RltPlane(id, o, 0.05, 1000));
+    state->ungrouped.push_back(id);
+  } else {
+    state->planes.at(id).Add(o);
+  }
+  state->recent.insert(id);
+}
+
 // The field of view is where cut edges pile up; one noisy edge close by must not widen it, or
 // the cut edges farther out pass for wall ends.
 TEST(LearnedFrustum, FindsTheBorderWhereCutEdgesPileUpDespiteANoisyCloseEdge) {
@@ -161,15 +174,7 @@ TEST(Registration, MatchesTheSameWallNotItsCollinearNeighbour) {
 TEST(Grouping, CovisiblePlanesShareAGroupAndANewPlaneLinksToThePrevious) {
   MapperOptions options;
   MapperState state;
-  auto add = [&](int64_t id, int64_t k, Vector2d a, Vector2d b) {
-    Observation o = *MakeObservation(Wall(a, b), k, 0.3);
-    if (!state.planes.count(id)) {
-      state.planes.emplace(id, RltPlane(id, o, 0.05, 1000));
-      state.ungrouped.push_back(id);
-    } else {
-      state.planes.at(id).Add(o);
-    }
-  };
+  auto add = [&](int64_t id, int64_t k, Vector2d a, Vector2d b) { See(&state, id, k, a, b); };
   // Planes 0 and 1 seen from iteration 0, plane 2 from iteration 30 while 0 has left.
   for (int64_t k = 0; k < 60; ++k) {
     std::vector<int64_t> visible = {1};
@@ -193,6 +198,30 @@ TEST(Grouping, ShortLivedPlanesTimeOut) {
   for (int64_t k = 1; k < 60; ++k) UpdateGroups(state, {}, k, options.grouping);
   EXPECT_TRUE(state.planes.empty());
   EXPECT_TRUE(state.ungrouped.empty());
+}
+
+TEST(Grouping, APlaneWhoseOrientationWandersIsNotGrouped) {
+  // Seen together for 12 iterations from the origin: a wall across the view (x = 2), a side
+  // wall (y = -1) whose fit jitters by 0.3 degrees, and a 0.2 m sliver of a wall beside a door
+  // jamb (y = 1 from x = 1) whose fit, pulled by the jamb's points, turns from 14 to 2 degrees
+  // as it grows. Relative to the wall across the view the side wall keeps its orientation and
+  // is grouped; the sliver is not one wall's steady fit, so it stays ungrouped (and times out).
+  MapperOptions options;
+  MapperState state;
+  auto add = [&](int64_t id, int64_t k, Vector2d a, Vector2d b) { See(&state, id, k, a, b); };
+  const double degree = M_PI / 180.0;
+  for (int64_t k = 0; k < 12; ++k) {
+    const double jitter = (k % 2 == 0 ? 0.3 : -0.3) * degree;
+    const double turn = (14.0 - static_cast<double>(k)) * degree;
+    const double length = 0.2 + 0.1 * static_cast<double>(k);
+    add(0, k, {2, -1}, {2, 1});
+    add(1, k, {-1, -1}, {1.5, -1 + 2.5 * std::tan(jitter)});
+    add(2, k, {1, 1}, {1 + length * std::cos(turn), 1 + length * std::sin(turn)});
+    UpdateGroups(state, {0, 1, 2}, k, options.grouping);
+  }
+  ASSERT_EQ(state.groups.size(), 1u);
+  EXPECT_EQ(state.groups[0].members, (std::vector<int64_t>{0, 1}));
+  EXPECT_EQ(state.ungrouped, (std::vector<int64_t>{2}));
 }
 
 TEST(Localisation, TwoWallsGiveThePoseOneWallTheMotionModel) {

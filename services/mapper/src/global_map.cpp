@@ -15,6 +15,9 @@ using Eigen::Matrix2d;
 using Eigen::Vector2d;
 using geometry::Pose2;
 
+// m: an end seen from two fixed poses in a row moves less than this if it is the wall's end.
+constexpr double kEndStill = 0.05;
+
 Pose2 PoseAt(const MapperState& state, int64_t iteration, const MapperOptions& options) {
   auto it = state.poses.find(iteration);
   if (it != state.poses.end()) return it->second;
@@ -59,13 +62,26 @@ const SeenWall& SeenFromFixedPose(MapperState& state, size_t g, int64_t id) {
   if (!inserted) return kept->second;
   const RltPlane& plane = *state.Plane(id);
   const auto& all = plane.Observations();
+  SeenWall& latest = kept->second;
   for (size_t i = plane.LowerBound(group.created); i > 0; --i) {
     const Observation& obs = all[i - 1];
     if (state.fixed_poses.count(obs.iteration) == 0) continue;
-    kept->second = SeenFrom(obs, state.poses.at(obs.iteration));
+    const SeenWall seen = SeenFrom(obs, state.poses.at(obs.iteration));
+    if (!latest.valid) {
+      latest = seen;
+      continue;
+    }
+    // A wall end stands still (§II.C): an end the sighting before did not see at the same
+    // place was where a nearer plane hid the wall, however the view judged it (a far wall's end
+    // beside a door jamb, 0.45 m short of the corner, put a group 0.24 m along its wall).
+    const Eigen::Vector2d t = DirectionOf(latest.alpha);
+    for (int e = 0; e < 2; ++e) {
+      latest.cut[e] = latest.cut[e] || seen.cut[e] ||
+                      std::abs(t.dot(latest.edge[e] - seen.edge[e])) > kEndStill;
+    }
     break;
   }
-  return kept->second;
+  return latest;
 }
 
 // The group's placement from one member as seen when the group was made: its sighting then

@@ -31,6 +31,9 @@ struct GroupingOptions {
   int min_common = 8;            // iterations two rltplanes must share to count as co-visible
   int covisible_window = 60;     // co-visibility is counted over this many recent iterations
   int recent_groups = 3;         // a grouped plane not in the last few groups is "re-seen"
+  // rad: an ungrouped rltplane whose orientation relative to a plane seen with it spreads more
+  // than this (standard deviation over its last min_observations sightings) is not grouped yet
+  double max_orientation_spread = 0.035;
 };
 
 // §II.C pairwise comparison and static edges.
