@@ -1,0 +1,71 @@
+// §II.D end, on the published map: a wall seen as a second rltplane lying inside a better
+// observed one on the same line is shown once; what "the same line" allows depends on how well
+// the piece's orientation is known, which is by its length.
+#include "relplane/mapper/map_cleanup.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace relplane::mapper {
+namespace {
+
+using Eigen::Vector2d;
+
+// A mapped wall from a to b (the normal on the left of a -> b), 2.5 m high.
+MappedPlane Mapped(int64_t id, const Vector2d& a, const Vector2d& b, int64_t observations) {
+  MappedPlane m;
+  m.id = id;
+  const Vector2d t = (b - a).normalized();
+  m.normal = Eigen::Vector3d(-t.y(), t.x(), 0.0);
+  m.d = -m.normal.head<2>().dot(a);
+  m.vertices = {{a.x(), a.y(), 0.0}, {b.x(), b.y(), 0.0}, {b.x(), b.y(), 2.5}, {a.x(), a.y(), 2.5}};
+  const Vector2d mid = 0.5 * (a + b);
+  m.centroid = Eigen::Vector3d(mid.x(), mid.y(), 1.25);
+  m.observations = observations;
+  m.both_ends_known = m.end_known[0] = m.end_known[1] = true;
+  return m;
+}
+
+// A piece of `length` whose middle lies on the wall y = 2 at x = 3, turned by `degrees`.
+MappedPlane Piece(int64_t id, double length, double degrees) {
+  const double a = degrees * M_PI / 180.0;
+  const Vector2d mid(3.0, 2.0), t(std::cos(a), std::sin(a));
+  return Mapped(id, mid - 0.5 * length * t, mid + 0.5 * length * t, 14);
+}
+
+bool Kept(const std::vector<MappedPlane>& planes, int64_t id) {
+  return std::any_of(planes.begin(), planes.end(), [id](const MappedPlane& m) { return m.id == id; });
+}
+
+TEST(MapCleanup, AShortPieceInsideAWallIsTheWallWhateverItsFitsTurn) {
+  // A 0.2 m sliver of the wall beside a door jamb, its fit 7 degrees off (the jamb's points):
+  // its ends lie within 1.3 cm of the wall's line.
+  std::vector<MappedPlane> planes = {Mapped(1, {0, 2}, {5, 2}, 200), Piece(2, 0.2, 7.0)};
+  MergeDuplicateWalls(&planes);
+  EXPECT_TRUE(Kept(planes, 1));
+  EXPECT_FALSE(Kept(planes, 2));
+}
+
+TEST(MapCleanup, ALongerPieceTurnedAsMuchIsAnotherWall) {
+  // A 1.2 m piece is fitted to a tenth of a degree: 7 degrees off is not the same wall (its
+  // ends are 7 cm either side of the line).
+  std::vector<MappedPlane> planes = {Mapped(1, {0, 2}, {5, 2}, 200), Piece(2, 1.2, 7.0)};
+  MergeDuplicateWalls(&planes);
+  EXPECT_TRUE(Kept(planes, 1));
+  EXPECT_TRUE(Kept(planes, 2));
+}
+
+TEST(MapCleanup, ADoorJambAtTheWallStays) {
+  // The jamb of a door in the wall (x = 3, 0.1 m deep across y = 2): perpendicular, so never
+  // the same line however short.
+  std::vector<MappedPlane> planes = {Mapped(1, {0, 2}, {5, 2}, 200),
+                                     Mapped(2, {3, 1.95}, {3, 2.05}, 30)};
+  MergeDuplicateWalls(&planes);
+  EXPECT_TRUE(Kept(planes, 1));
+  EXPECT_TRUE(Kept(planes, 2));
+}
+
+}  // namespace
+}  // namespace relplane::mapper
