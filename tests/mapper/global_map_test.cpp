@@ -213,6 +213,40 @@ TEST(GlobalMap, AWallEndThatMovedSinceTheSightingBeforeDoesNotSetThePrior) {
   EXPECT_NEAR(state.global.at(2).point.x(), 3.0, 1e-9);
 }
 
+TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {
+  // From the start pose a wall across the view (x = 3) is seen whole, y from 2 to -2, across a
+  // door (the lintel joins its pieces); the view cuts both edges but is not learnt yet, so they
+  // are taken for ends. From x = 1 on, the piece beside the door is seen, y from 1 to 0.5, and
+  // its door-side end (edge 1, at y = 0.5) is what group 0's relative map starts from. The
+  // first sighting's edge 1 lies 2.5 m from that end: the group must be placed by the wall's
+  // line there, and along it from the end as seen since.
+  const auto seen = [](const Vector2d& a, const Vector2d& b, double x, int64_t k) {
+    return *MakeObservation(testing::WallSeen(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
+  };
+  MapperState state;
+  state.first_iteration = 0;
+  state.poses[0] = {0.0, 0.0, 0.0};
+  state.fixed_poses.insert(0);
+  RltPlane wall(0, seen({3, 2}, {3, -2}, 0.0, 0), 0.05, 1000);
+  ASSERT_NEAR(wall.Latest().edge[1].y(), -2.0, 1e-9);
+  wall.first_seen = SeenFrom(wall.Latest(), state.poses[0]);
+  for (int64_t k = 1; k <= 5; ++k) {
+    wall.Add(seen({3, 1}, {3, 0.5}, 1.0, k));
+    state.poses[k] = {1.0, 0.0, 0.0};
+    state.fixed_poses.insert(k);
+  }
+  ASSERT_NEAR(wall.Latest().edge[1].y(), 0.5, 1e-9);
+  wall.groups = {0};
+  const double alpha = wall.first_seen.alpha;
+  state.planes.emplace(0, std::move(wall));
+  state.groups = {Built(0, 6, {{0, Placed(0.0, {0, 0}, 1, Known::kPoint)}}, 0)};
+  BuildGlobalMap(state, 0, MapperOptions{});
+  ASSERT_TRUE(state.global.count(0));
+  EXPECT_NEAR(state.global.at(0).alpha, alpha, 1e-9);
+  EXPECT_NEAR(state.global.at(0).point.x(), 3.0, 1e-9);
+  EXPECT_NEAR(state.global.at(0).point.y(), 0.5, 1e-9);
+}
+
 TEST(GlobalMap, AWallPlacedByItsLineIsAnchoredAtThePartSeen) {
   // A door jamb (x = 3, 0.1 m of it at y = 1.5) seen from the origin, its fit 5 degrees off about
   // the middle of its points. Placed by its line from that one sighting, its point is the middle

@@ -17,6 +17,9 @@ using geometry::Pose2;
 
 // m: an end seen from two fixed poses in a row moves less than this if it is the wall's end.
 constexpr double kEndStill = 0.05;
+// m: the first sighting's end and the latest one agree this well if they are the same end (edge
+// noise and the pose's drift since the start).
+constexpr double kFirstEndAgreement = 0.2;
 
 Pose2 PoseAt(const MapperState& state, int64_t iteration, const MapperOptions& options) {
   auto it = state.poses.find(iteration);
@@ -147,6 +150,26 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
     prior = PlacementFromSighting(seen, rel);
   }
   return prior;
+}
+
+// Does the plane's first sighting show the end `ref` its relative map starts from? Only if the
+// latest uncut sighting of that end from a known pose lies where the first one did. A wall seen
+// whole across a door from the start pose (its edges where the view cut it, before the view was
+// learnt) is later known by the door-side end of its piece: that end lay 2.6 m along the wall
+// from the first sighting's, and the first group was placed 2.6 m off (an unseen office, 70
+// degree sensor).
+bool FirstSightingShowsEnd(const MapperState& state, const RltPlane& plane, const SeenWall& first,
+                           int ref) {
+  if (ref < 0 || first.cut[ref]) return false;
+  const auto& all = plane.Observations();
+  const Vector2d t = DirectionOf(first.alpha);
+  for (size_t i = all.size(); i > 0; --i) {
+    const Observation& obs = all[i - 1];
+    const auto pose = state.poses.find(obs.iteration);
+    if (obs.cut[ref] || pose == state.poses.end()) continue;
+    return std::abs(t.dot(pose->second * obs.edge[ref] - first.edge[ref])) <= kFirstEndAgreement;
+  }
+  return true;  // nothing seen since contradicts it
 }
 
 struct Link {
@@ -337,13 +360,15 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
       for (const auto& [id, rel] : group.relative.members) {
         const RltPlane* plane = state.Plane(id);
         if (any_at_start && plane->FirstSeen() != state.first_iteration) continue;
-        const int ref = rel.known == Known::kPoint ? rel.ref : -1;
         const Observation& first = plane->Observations().front();
-        links.push_back({rel,
-                         plane->first_seen.valid
-                             ? PlacementOf(plane->first_seen, ref)
-                             : PlacementOf(first, PoseAt(state, first.iteration, options), ref),
-                         plane});
+        const SeenWall seen = plane->first_seen.valid
+                                  ? plane->first_seen
+                                  : SeenFrom(first, PoseAt(state, first.iteration, options));
+        const int ref =
+            rel.known == Known::kPoint && FirstSightingShowsEnd(state, *plane, seen, rel.ref)
+                ? rel.ref
+                : -1;
+        links.push_back({rel, PlacementOf(seen, ref), plane});
       }
     }
     group.placement = Solve(links, prior, options.localisation.prior_weight);
