@@ -43,6 +43,12 @@ void AddSample(const Observation& oa, const Observation& ob, SubInterval* s) {
       const Vector2d ab = rat * (ob.edge[j] - oa.edge[i]);  // B's edge j from A's edge i
       const Vector2d ba = rbt * (oa.edge[i] - ob.edge[j]);  // A's edge i from B's edge j
       s->npair[i][j] += 1.0;
+      for (int k = 0; k < 2; ++k) {
+        const Vector2d& in_view = k == 0 ? oa.edge[i] : ob.edge[j];
+        double* e = s->pair_edges[i][j][k];
+        e[0] += in_view.x(), e[1] += in_view.y();
+        e[2] += in_view.x() * in_view.x(), e[3] += in_view.y() * in_view.y();
+      }
       double* p = s->pair[0][i][j];
       p[0] += ab.x(), p[1] += ab.y(), p[2] += ab.x() * ab.x(), p[3] += ab.y() * ab.y();
       double* q = s->pair[1][j][i];
@@ -127,8 +133,15 @@ Verdict Judge(const SubInterval& s, const ComparisonOptions& options) {
       // than a few of them is no wall end (a cut flag flickers under noise near the border,
       // so one cut sample does not condemn it, nor split the interval).
       const double m = s.npair[i][j];
-      std_ij[i][j] = m >= options.min_samples && m >= kUncutShare * n ? Std2(s.pair[0][i][j], m)
-                                                                       : 1e9;
+      // Two edges that both stood still in the view keep their relative position whatever
+      // they are: a static edge moves in the view as the sensor does, while ends that ride
+      // along with it (a wall's end at the range limit, a segmentation split at a set
+      // distance) do not. Such a pairing tells nothing, as with a still sensor above.
+      const bool moved = m > 0.0 && std::max(Std2(s.pair_edges[i][j][0], m),
+                                             Std2(s.pair_edges[i][j][1], m)) >= options.min_motion;
+      std_ij[i][j] = moved && m >= options.min_samples && m >= kUncutShare * n
+                         ? Std2(s.pair[0][i][j], m)
+                         : 1e9;
       if (std_ij[i][j] < std_ij[best_i][best_j]) best_i = i, best_j = j;
       if (std_ij[i][j] <= options.static_std) ++low;
     }

@@ -58,6 +58,9 @@ struct SubInterval {
   double line[2][2][2] = {};  // [dir][edge][sum, sum^2]
   // Sensor-frame positions of A's and B's edges (x, y, x^2, y^2): did the sensor move at all?
   double edges[4][4] = {};
+  // The same for the two edges of pairing [i][j] ([0]: A's edge i, [1]: B's edge j), over the
+  // pairing's samples: did those two edges move in the view?
+  double pair_edges[2][2][2][4] = {};
   int cut[4] = {0, 0, 0, 0};  // samples where A's edges 0, 1 and B's edges 0, 1 were cut
 };
 
