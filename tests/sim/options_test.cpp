@@ -88,7 +88,8 @@ sim:
 }
 
 TEST(SimOptions, ScenariosLoadAndRun) {
-  for (const char* name : {"straight_hallway", "hallway_loop", "office"}) {
+  for (const char* name : {"straight_hallway", "hallway_loop", "office", "hallway_loop_doors",
+                           "office_other_sensor"}) {
     const std::string file = std::string(RELPLANE_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
     SCOPED_TRACE(file);
     const ServiceOptions o = LoadServiceOptions(file);
