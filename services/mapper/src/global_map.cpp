@@ -1,8 +1,10 @@
 #include "relplane/mapper/global_map.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <set>
+#include <vector>
 
 #include "relplane/mapper/localisation.hpp"
 #include "relplane/mapper/pose_graph.hpp"
@@ -96,6 +98,34 @@ Pose2 PlacementFromSighting(const SeenWall& seen, const Placement& rel) {
   return {t.x(), t.y(), yaw};
 }
 
+// Does `seen`, a sighting of `plane`, show the wall's end `ref`? Not where the view cut it, nor
+// far from where the sightings of that end from poses the walls fixed before `before` put it
+// (their median, so that one outlier among them does not decide): a wall end stands still
+// (§II.C), and an end seen elsewhere was a segmenter outlier (a corner's end seen once 0.4 m
+// past the corner, from a pose the motion model carried round it, put a group and the whole
+// loop after it 0.4 m off).
+bool ShowsEnd(const MapperState& state, const RltPlane& plane, const SeenWall& seen, int ref,
+              int64_t before) {
+  if (ref < 0 || seen.cut[ref]) return false;
+  const auto& all = plane.Observations();
+  const Vector2d t = DirectionOf(seen.alpha);
+  std::vector<double> along;  // the end's offset from the sighting's, along the wall
+  for (size_t i = plane.LowerBound(before); i > 0; --i) {
+    const Observation& obs = all[i - 1];
+    const auto pose = state.poses.find(obs.iteration);
+    if (obs.cut[ref] || obs.iteration == seen.iteration || pose == state.poses.end() ||
+        state.fixed_poses.count(obs.iteration) == 0) {
+      continue;
+    }
+    along.push_back(t.dot(pose->second * obs.edge[ref] - seen.edge[ref]));
+  }
+  if (along.empty()) return true;  // nothing seen from a fixed pose contradicts it
+  std::sort(along.begin(), along.end());
+  const size_t n = along.size();
+  const double median = n % 2 == 1 ? along[n / 2] : 0.5 * (along[n / 2 - 1] + along[n / 2]);
+  return std::abs(median) <= kFirstEndAgreement;
+}
+
 // Prior for group `g`: a member's reference end as seen around when the group was made, put
 // back through its place in the relative map. First choice: the latest sighting of each such end
 // before the group was made, from a pose the walls fixed. A pose the motion model carried
@@ -107,7 +137,7 @@ Pose2 PlacementFromSighting(const SeenWall& seen, const Placement& rel) {
 // Else the basis as seen when the group was made, unless the view cut its reference end then
 // (a door frame in front hid it: the edge seen was not the wall end the relative map starts
 // from, 0.7 m along the wall on the noisy office); then the latest member whose reference end
-// was in view.
+// was in view, at about where the sightings of it from fixed poses put it.
 Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options) {
   const RelativeMap& map = state.groups[g].relative;
   int64_t latest = -1;
@@ -145,7 +175,8 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   for (const auto& [id, rel] : map.members) {
     if (id == basis || rel.known != Known::kPoint) continue;
     const SeenWall seen = SeenWhenMade(state, g, id, options);
-    if (seen.cut[rel.ref] || seen.iteration <= latest) continue;
+    if (seen.iteration <= latest) continue;
+    if (!ShowsEnd(state, *state.Plane(id), seen, rel.ref, state.groups[g].created)) continue;
     latest = seen.iteration;
     prior = PlacementFromSighting(seen, rel);
   }
