@@ -105,6 +105,62 @@ TEST(Regrouping, ReorderingChainsEachMemberThroughItsLongestComparison) {
   }
 }
 
+// The static pairings of a group form two sets with none between them: A (across the way) and
+// B (on the left) show their ends for the first 80 iterations, then the view cuts both; C (on
+// the right) and H (the corner C meets) show theirs from then on, for 120 iterations, so a
+// member of C-H has the most pairing evidence. An earlier group put A's end on the global map.
+// §II.D places a group through the planes an earlier group placed: the basis is in A-B, whose
+// chain links the group to the map by a point; from C-H the group would be placed along one
+// direction from its prior alone (a hallway group 0.2 m off, and the loop after it).
+TEST(Regrouping, TheBasisIsInTheSetOfStaticPairingsThatLinksToTheGlobalMap) {
+  MapperOptions options;
+  MapperState state;
+  const Vector2d kH0{3.5, -2}, kH1{3.5, -3};
+  const auto see = [&](int64_t id, int64_t k, const Vector2d& a, const Vector2d& b, bool cut) {
+    const Pose2 inv = SensorAt(k).Inverse();
+    Observation obs = *MakeObservation(testing::WallSeen(inv * a, inv * b), k, 0.3);
+    obs.cut[0] = obs.cut[1] = cut;
+    auto it = state.planes.find(id);
+    if (it == state.planes.end()) {
+      state.planes.emplace(id, RltPlane(id, obs, 0.05, 3000));
+    } else {
+      it->second.Add(obs);
+    }
+  };
+  const int64_t a = 0, b = 1, c = 2, h = 3;
+  for (int64_t k = 0; k < 200; ++k) {
+    see(a, k, kA0, kA1, k >= 80);
+    see(b, k, kB0, kB1, k >= 80);
+    see(c, k, kC0, kC1, k < 80);
+    see(h, k, kH0, kH1, k < 80);
+  }
+  AddGroup(state, {a}, 0);
+  AddGroup(state, {a, b, c, h}, 0);
+  CompareMembers(state, state.groups[1], 199, options);
+  // The two sets as described: pairings within each, none across.
+  const auto pairings = [&](int64_t x, int64_t y) {
+    const DirectedStats& s = state.FindComparison(x, y)->From(x);
+    return s.PairCount(0) + s.PairCount(1);
+  };
+  ASSERT_GT(pairings(a, b), 0.0);
+  ASSERT_GT(pairings(c, h), pairings(a, b));
+  for (int64_t x : {a, b}) {
+    for (int64_t y : {c, h}) ASSERT_EQ(pairings(x, y), 0.0) << x << " " << y;
+  }
+  Placement a_end;
+  a_end.known = Known::kPoint;
+  a_end.ref = 0;
+  state.global[a] = a_end;
+  state.placed_by[a] = 0;
+
+  const ChainOrder order = ChooseOrder(state.groups[1], state);
+  EXPECT_TRUE(order.basis == a || order.basis == b) << "basis " << order.basis;
+  state.groups[1].order = order;
+  const RelativeMap map = BuildRelativeMap(state.groups[1], state);
+  EXPECT_EQ(map.members.at(a).known, Known::kPoint);
+  EXPECT_EQ(map.members.at(b).known, Known::kPoint);
+}
+
 // Group 0 of planes 0 (A) and 1 (B), seen for 100 iterations, and 2 (D) seen with them for 5.
 MapperState WithAShortLivedMember(const MapperOptions& options) {
   MapperState state;
