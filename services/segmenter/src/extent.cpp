@@ -30,6 +30,8 @@ struct Piece {
   Eigen::Vector3f trimmed_centroid = Eigen::Vector3f::Constant(kInf);
   Eigen::Vector3d trimmed_sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d trimmed_sum_sq = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d rays = Eigen::Matrix3d::Zero();  // sum of d d^T over the fitted points' rays d
+  Eigen::Vector3d trimmed_normal = Eigen::Vector3d::Zero();  // least squares
   float trim = 0.0f;  // distance from the first fit within which points are kept
   // How far the distance to the first fit varies over a cell of its grid: along the grid's
   // axes (half a cell each way), and per unit of distance from the EM plane.
@@ -63,9 +65,11 @@ void Refit(const Eigen::Vector3f& origin, Piece* piece) {
   piece->scatter = piece->stride * scatter;  // as if every point had entered the fit
 }
 
-// Refits the piece to its trimmed moments; the extent's axes (u, v) and centroid frame stay,
-// the vertices are lifted onto the new plane afterwards.
-void TrimmedRefit(Piece* p) {
+// The least-squares fit of the piece's trimmed moments: its scatter, centroid and normal, and
+// the rays' share, sum d d^T, from the second moments about the sensor (at the origin),
+// sum p p^T, over the mean squared range: each point weighs its squared range over the mean,
+// close to one on a short piece, where the ray noise tilts the fit.
+void TrimmedMoments(Piece* p) {
   if (p->trimmed_count < 3) return;
   Piece trimmed;
   trimmed.support = p->support;
@@ -74,11 +78,35 @@ void TrimmedRefit(Piece* p) {
   trimmed.sum = p->trimmed_sum;
   trimmed.sum_sq = p->trimmed_sum_sq;
   Refit(p->out.centroid, &trimmed);
-  p->out.normal = trimmed.out.normal;
-  p->out.d = trimmed.out.d;
-  p->out.rms = trimmed.out.rms;
+  const Eigen::Vector3d o = p->out.centroid.cast<double>();
+  const double n = p->trimmed_count;
+  Eigen::Matrix3d sum_sq = p->trimmed_sum_sq;
+  sum_sq.triangularView<Eigen::StrictlyUpper>() = sum_sq.transpose();
+  const Eigen::Matrix3d second = sum_sq + o * p->trimmed_sum.transpose() +
+                                 p->trimmed_sum * o.transpose() + n * o * o.transpose();
+  const double range2 = second.trace();
+  if (range2 > 0.0) p->rays = (p->stride * n / range2) * second;  // as the scatter: every point
   p->scatter = trimmed.scatter;
   p->trimmed_centroid = trimmed.out.centroid;
+  p->trimmed_normal = trimmed.out.normal.cast<double>();
+}
+
+// Refits the piece to its trimmed moments (TrimmedMoments), the noise along the sensor's rays
+// taken out (FitOutRayNoise, at most `max_variance` of it); the extent's axes (u, v) and
+// centroid frame stay, the vertices are lifted onto the new plane afterwards.
+void TrimmedRefit(double max_variance, Piece* p) {
+  if (p->trimmed_count < 3) return;
+  const RayNoiseFit fit =
+      FitOutRayNoise(p->scatter, p->rays, p->stride * p->trimmed_count, max_variance);
+  Eigen::Vector3d normal = fit.normal;
+  double d = -normal.dot(p->trimmed_centroid.cast<double>());
+  if (d < 0.0) {  // the sensor sits at the origin: it must be on the positive side
+    normal = -normal;
+    d = -d;
+  }
+  p->out.normal = normal.cast<float>();
+  p->out.d = static_cast<float>(d);
+  p->out.rms = static_cast<float>(fit.rms);
 }
 
 // What the second pass does with a cell's points.
@@ -185,8 +213,8 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
 
 // The kept pieces, described: trimmed refit and extent polygon. `index` receives each piece's
 // index in `out` (-1 when dropped).
-void Describe(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces, std::vector<PieceStats>* out,
-              std::vector<int32_t>* index) {
+void Describe(double max_variance, PieceWorkspace::Buffers* w, std::vector<Piece>* pieces,
+              std::vector<PieceStats>* out, std::vector<int32_t>* index) {
   const size_t num_cells = w->cells.size();
   std::vector<std::vector<Eigen::Vector2f>> hull_points(pieces->size());
   for (size_t s = 0; s < num_cells; ++s) {
@@ -201,12 +229,23 @@ void Describe(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces, std::vecto
     if (p.vertical || !(w->mode[s] & kExtremes)) continue;
     for (const auto& e : {c.lo_a, c.hi_a, c.lo_b, c.hi_b}) hull_points[piece].push_back(e);
   }
+  // The sensor's noise along its rays, pooled over the frame's pieces (the large ones weigh
+  // most): a short piece's own residual also holds what is not noise (a corner's other face, a
+  // bend), and a piece seen at a grazing angle divides it by little.
+  double residual = 0.0, along = 0.0;
+  for (Piece& p : *pieces) {
+    if (!p.kept || p.trimmed_count < 3) continue;
+    TrimmedMoments(&p);
+    residual += p.trimmed_normal.dot(p.scatter * p.trimmed_normal);
+    along += p.trimmed_normal.dot(p.rays * p.trimmed_normal);
+  }
+  const double ray_variance = along > 0.0 ? std::min(max_variance, residual / along) : 0.0;
   index->assign(pieces->size(), -1);
   for (size_t i = 0; i < pieces->size(); ++i) {
     Piece& p = (*pieces)[i];
     if (!p.kept) continue;
     (*index)[i] = static_cast<int32_t>(out->size());
-    TrimmedRefit(&p);
+    TrimmedRefit(ray_variance, &p);
     auto lift = [&p](float pa, float pb) {
       return Eigen::Vector3f(p.out.centroid + pa * p.u + pb * p.v);
     };
@@ -220,7 +259,7 @@ void Describe(PieceWorkspace::Buffers* w, std::vector<Piece>* pieces, std::vecto
     }
     for (auto& v : p.out.vertices) v -= (p.out.normal.dot(v) + p.out.d) * p.out.normal;
     if (p.trimmed_count >= 3) p.out.centroid = p.trimmed_centroid;
-    out->push_back(PieceStats{std::move(p.out), p.scatter, p.vertical});
+    out->push_back(PieceStats{std::move(p.out), p.scatter, p.rays, p.vertical});
   }
 }
 
@@ -268,7 +307,8 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
   TrimAndExtend(cloud, options, &w, &pieces, piece_labels);
   std::vector<PieceStats> described;
   std::vector<int32_t> index;
-  Describe(&w, &pieces, &described, &index);
+  Describe(static_cast<double>(options.sigma_max) * options.sigma_max, &w, &pieces, &described,
+           &index);
 
   std::vector<int32_t> merged_into;
   std::vector<PieceStats> merged = MergeTouchingPieces(std::move(described), options, &merged_into);

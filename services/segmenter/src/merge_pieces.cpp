@@ -51,7 +51,7 @@ std::vector<Eigen::Vector2f> Project(const std::vector<Eigen::Vector3f>& pts,
   return out;
 }
 
-// b joins a: pooled centroid and scatter, least-squares refit, extent over both extents.
+// b joins a: pooled centroid, scatter and rays, refit, extent over both extents.
 void Absorb(const PieceStats& b, const Options& options, PieceStats* a) {
   const double na = a->plane.num_points, nb = b.plane.num_points, n = na + nb;
   const Eigen::Vector3d ca = a->plane.centroid.cast<double>();
@@ -59,9 +59,10 @@ void Absorb(const PieceStats& b, const Options& options, PieceStats* a) {
   const Eigen::Vector3d c = (na * ca + nb * cb) / n;
   const Eigen::Matrix3d scatter = a->scatter + b.scatter + na * (ca - c) * (ca - c).transpose() +
                                   nb * (cb - c) * (cb - c).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect(scatter);
-  Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
+  const Eigen::Matrix3d rays = a->rays + b.rays;
+  const RayNoiseFit fit =
+      FitOutRayNoise(scatter, rays, n, static_cast<double>(options.sigma_max) * options.sigma_max);
+  Eigen::Vector3d normal = fit.normal;
   double d = -normal.dot(c);
   if (d < 0) {
     normal = -normal;
@@ -74,8 +75,9 @@ void Absorb(const PieceStats& b, const Options& options, PieceStats* a) {
   p.d = static_cast<float>(d);
   p.centroid = c.cast<float>();
   p.num_points = static_cast<int>(n);
-  p.rms = static_cast<float>(std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / n));
+  p.rms = static_cast<float>(fit.rms);
   a->scatter = scatter;
+  a->rays = rays;
   a->vertical = std::fabs(p.normal.z()) < options.vertical_max_nz;
   Eigen::Vector3f u, v;
   if (a->vertical) {
@@ -117,6 +119,25 @@ bool Mergeable(const PieceStats& a, const PieceStats& b, const Options& options)
 }
 
 }  // namespace
+
+RayNoiseFit FitOutRayNoise(const Eigen::Matrix3d& scatter, const Eigen::Matrix3d& rays, double n,
+                           double max_variance) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(scatter);
+  RayNoiseFit fit;
+  fit.normal = eig.eigenvectors().col(0).normalized();
+  const double residual = std::max(0.0, eig.eigenvalues()(0));
+  fit.rms = n > 0 ? std::sqrt(residual / n) : 0.0;
+  const double along = fit.normal.dot(rays * fit.normal);
+  if (!(along > 0.0) || residual == 0.0) return fit;
+  const double s2 = std::min(residual / along, max_variance);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> corrected;
+  corrected.computeDirect(scatter - s2 * rays);
+  if (!(corrected.eigenvalues()(1) > 0.0)) return fit;
+  fit.normal = corrected.eigenvectors().col(0).normalized();
+  fit.rms = n > 0 ? std::sqrt(std::max(0.0, fit.normal.dot(scatter * fit.normal)) / n) : 0.0;
+  return fit;
+}
 
 float ConvexPolygonDistance(const std::vector<Eigen::Vector2f>& a,
                             const std::vector<Eigen::Vector2f>& b) {

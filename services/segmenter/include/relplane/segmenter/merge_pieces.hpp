@@ -10,12 +10,29 @@
 
 namespace relplane::segmenter {
 
-// A described piece plus what merging needs: its scatter matrix about its centroid.
+// A described piece plus what merging needs: its scatter matrix about its centroid, and the sum
+// of d d^T over its points' unit sensor rays d (RayNoiseFit), both as if every point was fitted.
 struct PieceStats {
   DetectedPlane plane;
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d rays = Eigen::Matrix3d::Zero();
   bool vertical = false;
 };
+
+// A depth sensor's noise moves each point along its own ray. Its share of the scatter,
+// s^2 sum d d^T, is not isotropic, and for a piece seen off to one side its rays lean the same
+// way: the smallest eigenvector of the raw scatter tilts towards the rays by about
+// s^2 sum (n.d)(u.d) / (n L^2 / 12) for a piece of length L (a 0.15 m wall piece beside a door
+// at s = 1 cm: 1-2 degrees). The fit takes that share out: s^2 from the residual along the
+// least-squares normal (at most `max_variance`), then the smallest eigenvector of
+// scatter - s^2 rays. It keeps the least-squares normal where the scatter left along the piece
+// would not stay positive (the piece is too small to tell from its noise). `n` points.
+struct RayNoiseFit {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit; its sign is the caller's to set
+  double rms = 0.0;                                   // RMS distance to the plane
+};
+RayNoiseFit FitOutRayNoise(const Eigen::Matrix3d& scatter, const Eigen::Matrix3d& rays, double n,
+                           double max_variance);
 
 // Merges pieces whose planes agree (normals within options.piece_merge_angle_deg, each centroid
 // within options.merge_distance of the other plane) and whose extents touch (within cell_reach
