@@ -56,6 +56,7 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   ReadPositive(r, "fit_points_max", &o.fit_points_max);
   ReadNonNegative(r, "describe_points_max", &o.describe_points_max);
   ReadPositive(r, "vertical_max_nz", &o.vertical_max_nz);
+  r.Read("ray_noise_fit", &o.ray_noise_fit);
   r.Read("seed", &o.seed);
   long max_points = static_cast<long>(s.max_points);
   ReadPositive(r, "max_points", &max_points);

@@ -65,19 +65,25 @@ void Refit(const Eigen::Vector3f& origin, Piece* piece) {
   piece->scatter = piece->stride * scatter;  // as if every point had entered the fit
 }
 
+// The least-squares fit of the piece's trimmed moments (about its first fit's centroid).
+Piece TrimmedFit(const Piece& p) {
+  Piece trimmed;
+  trimmed.support = p.support;
+  trimmed.stride = p.stride;
+  trimmed.count = p.trimmed_count;
+  trimmed.sum = p.trimmed_sum;
+  trimmed.sum_sq = p.trimmed_sum_sq;
+  Refit(p.out.centroid, &trimmed);
+  return trimmed;
+}
+
 // The least-squares fit of the piece's trimmed moments: its scatter, centroid and normal, and
 // the rays' share, sum d d^T, from the second moments about the sensor (at the origin),
 // sum p p^T, over the mean squared range: each point weighs its squared range over the mean,
 // close to one on a short piece, where the ray noise tilts the fit.
 void TrimmedMoments(Piece* p) {
   if (p->trimmed_count < 3) return;
-  Piece trimmed;
-  trimmed.support = p->support;
-  trimmed.stride = p->stride;
-  trimmed.count = p->trimmed_count;
-  trimmed.sum = p->trimmed_sum;
-  trimmed.sum_sq = p->trimmed_sum_sq;
-  Refit(p->out.centroid, &trimmed);
+  const Piece trimmed = TrimmedFit(*p);
   const Eigen::Vector3d o = p->out.centroid.cast<double>();
   const double n = p->trimmed_count;
   Eigen::Matrix3d sum_sq = p->trimmed_sum_sq;
@@ -89,6 +95,18 @@ void TrimmedMoments(Piece* p) {
   p->scatter = trimmed.scatter;
   p->trimmed_centroid = trimmed.out.centroid;
   p->trimmed_normal = trimmed.out.normal.cast<double>();
+}
+
+// Refits the piece to its trimmed moments by least squares; the extent's axes (u, v) and
+// centroid frame stay, the vertices are lifted onto the new plane afterwards.
+void LeastSquaresRefit(Piece* p) {
+  if (p->trimmed_count < 3) return;
+  const Piece trimmed = TrimmedFit(*p);
+  p->out.normal = trimmed.out.normal;
+  p->out.d = trimmed.out.d;
+  p->out.rms = trimmed.out.rms;
+  p->scatter = trimmed.scatter;
+  p->trimmed_centroid = trimmed.out.centroid;
 }
 
 // Refits the piece to its trimmed moments (TrimmedMoments), the noise along the sensor's rays
@@ -213,8 +231,9 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
 
 // The kept pieces, described: trimmed refit and extent polygon. `index` receives each piece's
 // index in `out` (-1 when dropped).
-void Describe(double max_variance, PieceWorkspace::Buffers* w, std::vector<Piece>* pieces,
-              std::vector<PieceStats>* out, std::vector<int32_t>* index) {
+void Describe(bool ray_noise_fit, double max_variance, PieceWorkspace::Buffers* w,
+              std::vector<Piece>* pieces, std::vector<PieceStats>* out,
+              std::vector<int32_t>* index) {
   const size_t num_cells = w->cells.size();
   std::vector<std::vector<Eigen::Vector2f>> hull_points(pieces->size());
   for (size_t s = 0; s < num_cells; ++s) {
@@ -234,7 +253,7 @@ void Describe(double max_variance, PieceWorkspace::Buffers* w, std::vector<Piece
   // bend), and a piece seen at a grazing angle divides it by little.
   double residual = 0.0, along = 0.0;
   for (Piece& p : *pieces) {
-    if (!p.kept || p.trimmed_count < 3) continue;
+    if (!ray_noise_fit || !p.kept || p.trimmed_count < 3) continue;
     TrimmedMoments(&p);
     residual += p.trimmed_normal.dot(p.scatter * p.trimmed_normal);
     along += p.trimmed_normal.dot(p.rays * p.trimmed_normal);
@@ -245,7 +264,11 @@ void Describe(double max_variance, PieceWorkspace::Buffers* w, std::vector<Piece
     Piece& p = (*pieces)[i];
     if (!p.kept) continue;
     (*index)[i] = static_cast<int32_t>(out->size());
-    TrimmedRefit(ray_variance, &p);
+    if (ray_noise_fit) {
+      TrimmedRefit(ray_variance, &p);
+    } else {
+      LeastSquaresRefit(&p);
+    }
     auto lift = [&p](float pa, float pb) {
       return Eigen::Vector3f(p.out.centroid + pa * p.u + pb * p.v);
     };
@@ -307,8 +330,8 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
   TrimAndExtend(cloud, options, &w, &pieces, piece_labels);
   std::vector<PieceStats> described;
   std::vector<int32_t> index;
-  Describe(static_cast<double>(options.sigma_max) * options.sigma_max, &w, &pieces, &described,
-           &index);
+  Describe(options.ray_noise_fit, static_cast<double>(options.sigma_max) * options.sigma_max, &w,
+           &pieces, &described, &index);
 
   std::vector<int32_t> merged_into;
   std::vector<PieceStats> merged = MergeTouchingPieces(std::move(described), options, &merged_into);

@@ -60,8 +60,16 @@ void Absorb(const PieceStats& b, const Options& options, PieceStats* a) {
   const Eigen::Matrix3d scatter = a->scatter + b.scatter + na * (ca - c) * (ca - c).transpose() +
                                   nb * (cb - c) * (cb - c).transpose();
   const Eigen::Matrix3d rays = a->rays + b.rays;
-  const RayNoiseFit fit =
-      FitOutRayNoise(scatter, rays, n, static_cast<double>(options.sigma_max) * options.sigma_max);
+  RayNoiseFit fit;
+  if (options.ray_noise_fit) {
+    fit = FitOutRayNoise(scatter, rays, n,
+                         static_cast<double>(options.sigma_max) * options.sigma_max);
+  } else {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(scatter);
+    fit.normal = eig.eigenvectors().col(0).normalized();
+    fit.rms = std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / n);
+  }
   Eigen::Vector3d normal = fit.normal;
   double d = -normal.dot(c);
   if (d < 0) {

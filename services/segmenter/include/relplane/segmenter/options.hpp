@@ -70,6 +70,11 @@ struct Options {
   // that sets the reach is the subsample's own. 0: every point (as with keep_labels).
   int describe_points_max = 40000;
   float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
+  // Take the sensor's noise along its rays out of each piece's fit (FitOutRayNoise in
+  // merge_pieces.hpp): a plain fit of a short piece seen off to one side tilts towards its rays
+  // (1.7 degrees for a 0.15 m wall piece at 1 cm). Off by default: the pieces' fits improve, but
+  // the mapper's results on the recorded scenarios move both ways (README).
+  bool ray_noise_fit = false;
 
   bool keep_labels = false;  // fill Result::labels (pictures, tests)
   uint32_t seed = 1;         // proposals' random choices; fixed per frame for determinism
