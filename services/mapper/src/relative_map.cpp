@@ -179,39 +179,29 @@ void GrowByPoints(const Group& group, MapperState& state, RelativeMap* map, Chai
   }
 }
 
-// The comparison order that uses the most iterations (§II.F reordering) and the map it gives.
-RelativeMap Choose(const Group& group, MapperState& state, ChainOrder* order) {
-  const auto& members = group.members;
-  // The static pairings may form sets with no pairing between them: the chain from a basis
-  // reaches its own set only, and the others are placed by lines. §II.D places a group through
-  // the planes an earlier group placed, so the basis is in a set holding one whose static end
-  // is on the global map, when there is such a set. By pairing evidence alone, whichever set it
-  // was in, a two-wall corner set took the basis over (43 iterations against 42) and left a
-  // group of six walls placed along the hallway from its prior alone (0.2 m off, and the whole
-  // loop after it).
-  std::set<int64_t> linked;  // members whose chain reaches a static end on the global map
-  for (int64_t m : members) {
-    int ref = -1;
-    if (EdgeEvidence(group, state, m, &ref) <= 0.0) continue;
-    RelativeMap chain = StartAt(m, ref);
-    GrowByPoints(group, state, &chain, nullptr);
-    for (const auto& [id, p] : chain.members) {
-      const auto placed = state.global.find(id);
-      const auto by = state.placed_by.find(id);
-      if (placed != state.global.end() && placed->second.known == Known::kPoint &&
-          by != state.placed_by.end() && by->second < group.id) {
-        linked.insert(m);
-        break;
-      }
+// Does the chain reach a member whose static end an earlier group put on the global map?
+bool LinksToMap(const RelativeMap& chain, const MapperState& state, int64_t group_id) {
+  for (const auto& [id, p] : chain.members) {
+    const auto placed = state.global.find(id);
+    const auto by = state.placed_by.find(id);
+    if (placed != state.global.end() && placed->second.known == Known::kPoint &&
+        by != state.placed_by.end() && by->second < group_id) {
+      return true;
     }
   }
-  // Within that set, the basis and its reference edge: the most static-pairing evidence.
+  return false;
+}
+
+// The basis and its reference edge among `candidates` (all members when empty): the most
+// static-pairing evidence; the map grown from it by points, its links recorded in `order`.
+RelativeMap GrowFromBest(const Group& group, MapperState& state,
+                         const std::set<int64_t>& candidates, ChainOrder* order) {
   double best = -1.0;
   order->basis = -1;
   order->basis_ref = -1;
   order->links.clear();
-  for (int64_t m : members) {
-    if (!linked.empty() && linked.count(m) == 0) continue;
+  for (int64_t m : group.members) {
+    if (!candidates.empty() && candidates.count(m) == 0) continue;
     int ref = -1;
     const double total = EdgeEvidence(group, state, m, &ref);
     if (total > best) {
@@ -222,6 +212,31 @@ RelativeMap Choose(const Group& group, MapperState& state, ChainOrder* order) {
   }
   RelativeMap map = StartAt(order->basis, order->basis_ref);
   GrowByPoints(group, state, &map, order);
+  return map;
+}
+
+// The comparison order that uses the most iterations (§II.F reordering) and the map it gives.
+RelativeMap Choose(const Group& group, MapperState& state, ChainOrder* order) {
+  // The static pairings may form sets with no pairing between them: the chain from a basis
+  // reaches its own set only, and the others are placed by lines. §II.D places a group through
+  // the planes an earlier group placed, so the basis is in a set holding one whose static end
+  // is on the global map, when there is such a set. By pairing evidence alone, whichever set it
+  // was in, a two-wall corner set took the basis over (43 iterations against 42) and left a
+  // group of six walls placed along the hallway from its prior alone (0.2 m off, and the whole
+  // loop after it). The other members' chains are grown only when the best one's does not link
+  // (growing every member's chain at every build tripled the time per iteration on a large map).
+  RelativeMap map = GrowFromBest(group, state, {}, order);
+  if (!LinksToMap(map, state, group.id)) {
+    std::set<int64_t> linked;  // members whose chain reaches a static end on the global map
+    for (int64_t m : group.members) {
+      int ref = -1;
+      if (m == order->basis || EdgeEvidence(group, state, m, &ref) <= 0.0) continue;
+      RelativeMap chain = StartAt(m, ref);
+      GrowByPoints(group, state, &chain, nullptr);
+      if (LinksToMap(chain, state, group.id)) linked.insert(m);
+    }
+    if (!linked.empty()) map = GrowFromBest(group, state, linked, order);
+  }
   PlaceRest(group, state, &map, order);
   return map;
 }
