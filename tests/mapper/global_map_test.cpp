@@ -40,20 +40,22 @@ Group Built(int64_t id, int64_t created, const std::map<int64_t, Placement>& rel
   return group;
 }
 
-// Planes 0 (an end wall x = 4), 1 and 2 (the sides of a hallway, known by their far ends):
-// group 0 maps the end wall's line, group 1 (made at iteration 6) knows it by its orientation
-// only, so nothing links group 1's position and its prior places it.
-void PlaceByPriorOnly(MapperState* state, const Observation& end, const Placement& left_end,
-                      const Placement& right_end) {
+// A wall from a to b as seen from (x, 0) facing along x, at iteration k.
+Observation SeenAlongX(const Vector2d& a, const Vector2d& b, double x, int64_t k) {
+  return *MakeObservation(testing::WallSeen(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
+}
+
+// Plane 0 (an end wall x = 4) and the others known by their ends (`ends`): group 0 maps the end
+// wall's line, group 1 (made at iteration `created`) knows it by its orientation only, so nothing
+// links group 1's position and its prior places it.
+void PlaceByPriorOnly(MapperState* state, const Observation& end, int64_t created,
+                      const std::map<int64_t, Placement>& ends) {
   state->Plane(0)->groups = {0, 1};
-  state->Plane(1)->groups = {1};
-  state->Plane(2)->groups = {1};
+  std::map<int64_t, Placement> relative = ends;
+  for (const auto& [id, placed] : ends) state->Plane(id)->groups = {1};
+  relative[0] = Placed(end.Alpha(), {0, 0}, -1, Known::kAngle);
   const Placement end_line = Placed(end.Alpha(), {4, 0}, -1, Known::kLine);
-  state->groups = {
-      Built(0, 0, {{0, end_line}}, 0),
-      Built(1, 6,
-            {{0, Placed(end.Alpha(), {0, 0}, -1, Known::kAngle)}, {1, left_end}, {2, right_end}},
-            1)};
+  state->groups = {Built(0, 0, {{0, end_line}}, 0), Built(1, created, relative, 1)};
   state->global = {{0, end_line}};
   state->placed_by = {{0, 0}};
   BuildGlobalMap(*state, 1, MapperOptions{});
@@ -169,8 +171,9 @@ TEST(GlobalMap, APriorFromSeveralWallEndsAveragesTheirSightings) {
   state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
   state.planes.emplace(1, RltPlane(1, left, 0.05, 1000));
   state.planes.emplace(2, RltPlane(2, right, 0.05, 1000));
-  PlaceByPriorOnly(&state, end, Placed(left.Alpha(), {3, 1}, FarEnd(left), Known::kPoint),
-                   Placed(right.Alpha(), {3, -1}, FarEnd(right), Known::kPoint));
+  PlaceByPriorOnly(&state, end, 6,
+                   {{1, Placed(left.Alpha(), {3, 1}, FarEnd(left), Known::kPoint)},
+                    {2, Placed(right.Alpha(), {3, -1}, FarEnd(right), Known::kPoint)}});
   ASSERT_TRUE(state.global.count(1) && state.global.count(2));
   EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-9);
   EXPECT_NEAR(state.global.at(2).point.x(), 3.0, 1e-9);
@@ -183,9 +186,7 @@ TEST(GlobalMap, AWallEndThatMovedSinceTheSightingBeforeDoesNotSetThePrior) {
   // was made. The right side's far end, hidden behind something nearer the segmenter did not
   // report, is seen uncut at x = 2.6 and then x = 2.75: it moves with the sensor, so it is not
   // the wall's end (§II.C) and must not pull the group 0.25 m / 2 short.
-  const auto seen = [](const Vector2d& a, const Vector2d& b, double x, int64_t k) {
-    return *MakeObservation(testing::WallSeen(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
-  };
+  const auto seen = SeenAlongX;
   MapperState state;
   state.first_iteration = 0;
   for (int64_t k = 0; k <= 5; ++k) {
@@ -204,7 +205,7 @@ TEST(GlobalMap, AWallEndThatMovedSinceTheSightingBeforeDoesNotSetThePrior) {
   state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
   state.planes.emplace(1, std::move(left));
   state.planes.emplace(2, std::move(right));
-  PlaceByPriorOnly(&state, end, left_end, right_end);
+  PlaceByPriorOnly(&state, end, 6, {{1, left_end}, {2, right_end}});
   ASSERT_TRUE(state.global.count(1) && state.global.count(2));
   EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-9);
   EXPECT_NEAR(state.global.at(2).point.x(), 3.0, 1e-9);
@@ -221,8 +222,7 @@ TEST(GlobalMap, AnEndSightingFarFromWhereFixedPosesSawThatEndDoesNotSetThePrior)
   // stands still). The prior must come from the recess wall's end (iteration 8), not put the
   // group 0.4 m off.
   const auto seen = [](const Vector2d& a, const Vector2d& b, double x, int64_t k, bool cut) {
-    Observation obs =
-        *MakeObservation(testing::WallSeen(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
+    Observation obs = SeenAlongX(a, b, x, k);
     obs.cut[FarEnd(obs)] = cut;
     return obs;
   };
@@ -250,19 +250,7 @@ TEST(GlobalMap, AnEndSightingFarFromWhereFixedPosesSawThatEndDoesNotSetThePrior)
   state.planes.emplace(1, std::move(left));
   state.planes.emplace(2, std::move(right));
   state.planes.emplace(3, std::move(recess));
-  state.Plane(0)->groups = {0, 1};
-  for (int64_t id : {1, 2, 3}) state.Plane(id)->groups = {1};
-  const Placement end_line = Placed(end.Alpha(), {4, 0}, -1, Known::kLine);
-  state.groups = {Built(0, 0, {{0, end_line}}, 0),
-                  Built(1, 10,
-                        {{0, Placed(end.Alpha(), {0, 0}, -1, Known::kAngle)},
-                         {1, left_end},
-                         {2, right_end},
-                         {3, recess_end}},
-                        1)};
-  state.global = {{0, end_line}};
-  state.placed_by = {{0, 0}};
-  BuildGlobalMap(state, 1, MapperOptions{});
+  PlaceByPriorOnly(&state, end, 10, {{1, left_end}, {2, right_end}, {3, recess_end}});
   ASSERT_TRUE(state.global.count(2) && state.global.count(3));
   EXPECT_NEAR(state.global.at(2).point.x(), 3.0, 1e-9);
   EXPECT_NEAR(state.global.at(3).point.x(), 3.0, 1e-9);
@@ -275,9 +263,7 @@ TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {
   // its door-side end (edge 1, at y = 0.5) is what group 0's relative map starts from. The
   // first sighting's edge 1 lies 2.5 m from that end: the group must be placed by the wall's
   // line there, and along it from the end as seen since.
-  const auto seen = [](const Vector2d& a, const Vector2d& b, double x, int64_t k) {
-    return *MakeObservation(testing::WallSeen(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
-  };
+  const auto seen = SeenAlongX;
   MapperState state;
   state.first_iteration = 0;
   state.poses[0] = {0.0, 0.0, 0.0};
