@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "options_yaml.hpp"
 
@@ -88,9 +90,15 @@ sim:
 }
 
 TEST(SimOptions, ScenariosLoadAndRun) {
-  for (const char* name : {"straight_hallway", "hallway_loop", "office", "hallway_loop_doors",
-                           "office_other_sensor"}) {
-    const std::string file = std::string(RELPLANE_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
+  // Every scenario file, so a new one is checked the day it is written.
+  std::vector<std::string> files;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(RELPLANE_SOURCE_DIR) + "/scenarios")) {
+    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 7u);
+  for (const std::string& file : files) {
     SCOPED_TRACE(file);
     const ServiceOptions o = LoadServiceOptions(file);
     EXPECT_EQ(o.sim.sensor.noise_sigma, 0.0) << "noise is off unless overridden";
