@@ -93,6 +93,30 @@ TEST(RltPlane, FullLengthIgnoresSightingsShorterThanTheWallWasSeenLater) {
   EXPECT_NEAR(plane.Length(), 3.0, 1e-9);
 }
 
+// A wall's visible length changes smoothly as the sensor moves; one sighting longer than both
+// its neighbours (a strip of floor along a door jamb's foot taken with it) is not its size, seen
+// whole or not (§II.C maximum size): the jamb's length put the wall beside it 0.5 m off.
+TEST(RltPlane, ALengthSeenInOneSightingAloneIsNotTheWallsSize) {
+  const Vector2d foot(2, -1), top(2, -0.7);  // a 0.3 m door jamb
+  RltPlane plane(0, *MakeObservation(Wall(foot - Vector2d(0, 0.8), top), 0, 0.3), 0.05, 3000);
+  for (int k = 1; k < 40; ++k) {
+    // Every tenth sighting reaches 0.3 m (once 0.8 m) farther along the floor.
+    const double spike = k % 10 == 5 ? (k == 25 ? 0.8 : 0.3) : 0.0;
+    plane.Add(*MakeObservation(Wall(foot - Vector2d(0, spike), top), k, 0.3));
+    if (k >= 2) {
+      EXPECT_NEAR(plane.Length(), 0.3, 1e-9) << k;
+    }
+  }
+  plane.MarkFull(0, 39);
+  EXPECT_NEAR(plane.Length(), 0.3, 1e-9);
+  // A wall that grows is still followed, a sighting behind.
+  RltPlane growing(1, *MakeObservation(Wall({3, -1}, {3, 0}), 0, 0.3), 0.05, 3000);
+  for (int k = 1; k < 10; ++k) {
+    growing.Add(*MakeObservation(Wall({3, -1}, {3, 0.05 * k}), k, 0.3));
+  }
+  EXPECT_NEAR(growing.Length(), 1.0 + 0.05 * 8, 1e-9);
+}
+
 TEST(Observation, ReducesAWallAndRejectsFloorsAndBadNumbers) {
   auto obs = MakeObservation(Wall({3, -1}, {3, 2}), 7, 0.3);
   ASSERT_TRUE(obs);

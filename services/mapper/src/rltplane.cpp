@@ -10,6 +10,10 @@ constexpr double kFullLengthTolerance = 0.1;  // m, several times the edge noise
 constexpr size_t kSmoothing = 5;              // lengths averaged for the growth phase
 constexpr double kNoiseHysteresis = 3.0;      // length noise sigmas
 
+double Median3(double a, double b, double c) {
+  return std::max(std::min(a, b), std::min(std::max(a, b), c));
+}
+
 }  // namespace
 
 RltPlane::RltPlane(int64_t id, Observation first, double phase_hysteresis, int max_observations)
@@ -69,8 +73,17 @@ void RltPlane::Add(Observation obs) {
       extreme_iteration_ = it;
     }
   }
-  if (raw_length > max_length_) {
-    max_length_ = raw_length;
+  // §II.C's maximum size, from lengths seen in two of three sightings in a row: a wall's
+  // visible length changes smoothly as the sensor moves, and one sighting longer than both its
+  // neighbours is a segmentation outlier (a 0.3 m door jamb seen once 1.09 m long, a strip of
+  // floor along its foot taken with it, put the wall beside it 0.5 m across the hallway). The
+  // first two sightings stand until a third can confirm them.
+  const double confirmed =
+      n >= 3 ? Median3(recent_lengths_[n - 3], recent_lengths_[n - 2], recent_lengths_[n - 1])
+             : raw_length;
+  const double longest = n == 3 ? confirmed : std::max(max_length_, confirmed);
+  if (longest != max_length_) {
+    max_length_ = longest;
     full_dirty_ = !full_ranges_.empty();
   }
   z_min_ = std::min(z_min_, obs.z_min);
@@ -142,7 +155,8 @@ double RltPlane::Length() const {
     for (auto r = full_ranges_.rbegin(); r != full_ranges_.rend() && n < 300; ++r) {
       for (size_t i = LowerBound(r->first); i < observations_.size() && n < 300; ++i) {
         if (observations_[i].iteration > r->second) break;
-        if (observations_[i].Length() < max_length_ - kFullLengthTolerance) continue;
+        // Nor, for the same reason as the maximum, one seen longer than it.
+        if (std::abs(observations_[i].Length() - max_length_) > kFullLengthTolerance) continue;
         sum += observations_[i].Length();
         ++n;
       }
