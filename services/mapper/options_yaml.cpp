@@ -36,6 +36,7 @@ MapperOptions ReadMapperOptions(Reader& r) {
   back.Read("max_angle", &o.backtrack.max_angle);
   back.Read("max_distance", &o.backtrack.max_distance);
   back.Read("margin", &o.backtrack.margin);
+  back.Read("open_margin", &o.backtrack.open_margin);
   back.Read("min_overlap", &o.backtrack.min_overlap);
 
   Reader grp = r.Child("grouping");

@@ -31,7 +31,14 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const M
       WallEnds(state, *plane, placed, &lo, &hi);
       // Sufficient overlap, as in §II.A: a collinear neighbour (the same wall on the other side
       // of a partition) must not match.
-      const double m0 = t.dot(lo) - options.margin, m1 = t.dot(hi) + options.margin;
+      // An end never seen static is only where the view or a nearer plane cut the wall when it
+      // was mapped: the wall may go on behind it (a door recess's back wall, seen past the near
+      // jamb on the way out and past the far jamb on the way back).
+      bool known[2];
+      known[placed.ref] = true;
+      known[1 - placed.ref] = placed.has_other || plane->FullLengthKnown();
+      const double m0 = t.dot(lo) - (known[0] ? options.margin : options.open_margin);
+      const double m1 = t.dot(hi) + (known[1] ? options.margin : options.open_margin);
       const double o0 = std::min(t.dot(e0), t.dot(e1)), o1 = std::max(t.dot(e0), t.dot(e1));
       const double shorter = std::max(std::min(m1 - m0, o1 - o0), 1e-3);
       if (std::min(m1, o1) - std::max(m0, o0) < options.min_overlap * shorter) continue;

@@ -21,6 +21,7 @@ struct BacktrackOptions {
   double max_angle = 0.15;     // rad
   double max_distance = 0.25;  // m between the transformed plane and the mapped line
   double margin = 0.1;         // m the mapped extent is widened by for the overlap test
+  double open_margin = 0.25;   // m the same beyond an end never seen static
   double min_overlap = 0.3;    // of the shorter extent
 };
 
