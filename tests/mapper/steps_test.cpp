@@ -195,6 +195,48 @@ TEST(Registration, MatchesTheSameWallNotItsCollinearNeighbour) {
   EXPECT_LT(MatchScore(last, turned, options), 0.0);
 }
 
+// The wall from a to b as the segmenter reports it from the origin, fitted to `support` points.
+PlaneInput Fitted(Vector2d a, Vector2d b, int support) {
+  PlaneInput in = Wall(a, b);
+  in.support = support;
+  return in;
+}
+
+TEST(Registration, ASurfaceReportedTwiceInOneIterationIsOnePlane) {
+  // The end wall x = 3 is seen whole (4 m), and in the same frames the segmenter also reports
+  // its last 0.5 m at the room corner as a piece fitted 4 degrees off (as on the office at
+  // sigma = 1 cm, sensor seeds 2 and 3). The piece matches the rltplane the whole wall takes;
+  // it must not become a second rltplane (mapped as the wall's duplicate, 3-4 degrees off).
+  const double off = 4.0 * M_PI / 180.0;
+  const Vector2d corner{3.0, 2.0};
+  const Vector2d piece_end = corner - 0.5 * Vector2d(std::sin(off), std::cos(off));
+  Mapper mapper;
+  for (int64_t k = 0; k < 60; ++k) {
+    // Driving towards the wall: in the sensor's frame it comes 2 cm closer every iteration.
+    const Vector2d shift{-0.02 * static_cast<double>(k), 0.0};
+    mapper.Process(k, {Fitted(Vector2d(3, -2) + shift, corner + shift, 8000),
+                       Fitted(piece_end + shift, corner + shift, 300)});
+  }
+  EXPECT_EQ(mapper.State().planes.size(), 1u);
+}
+
+TEST(Registration, OnlyAPieceAlongAWallOfTheSameIterationIsDropped) {
+  RegistrationOptions options;
+  std::vector<Observation> seen;
+  for (const PlaneInput& in : {
+           Fitted({3, -2}, {3, 2}, 8000),         // the wall, a door in it reported whole
+           Fitted({3.0, 1.5}, {3.02, 1.0}, 300),  // a piece of it, 2.3 degrees off: dropped
+           Fitted({3, 0.5}, {3.1, 0.5}, 200),     // a jamb face across it: kept
+           Fitted({3.3, -0.4}, {3.3, 0.4}, 400),  // a wall 0.3 m behind, seen through the door
+           Fitted({3, 2.5}, {3, 3.5}, 2000),      // its collinear neighbour past a corner
+       }) {
+    seen.push_back(*MakeObservation(in, 0, 0.3));
+  }
+  DropRepeatedSightings(&seen, options);
+  ASSERT_EQ(seen.size(), 4u);
+  for (const Observation& obs : seen) EXPECT_NE(obs.support, 300);
+}
+
 TEST(Grouping, CovisiblePlanesShareAGroupAndANewPlaneLinksToThePrevious) {
   MapperOptions options;
   MapperState state;

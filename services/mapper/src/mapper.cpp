@@ -49,6 +49,8 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
     frustum_.Observe(obs->edge[1]);
     observations.push_back(std::move(*obs));
   }
+  // §II.A: one plane per surface and iteration, as an rltplane stores them.
+  DropRepeatedSightings(&observations, options_.registration);
   // Edges cut by the view are never static edges (§II.C).
   MarkOccludedEdges(&observations);
   for (Observation& obs : observations) {
