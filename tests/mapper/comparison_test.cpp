@@ -191,6 +191,36 @@ TEST(Comparison, PiecesOfOneWallWhoseEndsRideWithTheViewHaveNoStaticPairing) {
   EXPECT_NEAR(offset, 0.0, 1e-9);
 }
 
+TEST(Comparison, AnEdgeCutByTheViewPlacesNoLineAcrossIt) {
+  // The left wall y = 1 from x = 2 is seen up to x = 5, where a jamb hides the rest (its edge
+  // there cut by the view, standing still on the map), while the sensor drives towards the end
+  // wall x = 6. The end wall's line, 1 m from that edge, is steady, but the edge is no wall
+  // end: placed from the wall's mapped end (the corner metres on), the end wall went with it.
+  ComparisonOptions options;
+  auto pose = [](int k) { return geometry::Pose2{0.03 * k, 0.0, 0.0}; };
+  auto left = [&](int k) {
+    Observation obs = See(pose(k), kLeft0, kLeft1, 0.0, 3.0, k);
+    const int at_jamb = (pose(k) * obs.edge[1]).x() > (pose(k) * obs.edge[0]).x() ? 1 : 0;
+    obs.cut[at_jamb] = true;
+    return obs;
+  };
+  RltPlane a(0, left(0), 0.05, 1000);
+  RltPlane b(1, See(pose(0), kEnd0, kEnd1, 0, 2, 0), 0.05, 1000);
+  for (int k = 1; k < 60; ++k) {
+    a.Add(left(k));
+    b.Add(See(pose(k), kEnd0, kEnd1, 0, 2, k));
+  }
+  Comparison c(0, 1);
+  c.Update(a, b, 59, options, 5);
+  const Observation& last = a.Latest();
+  const int at_jamb = last.cut[1] ? 1 : 0;
+  double offset = 0.0;
+  EXPECT_FALSE(c.From(0).Line(at_jamb, &offset));
+  // From the wall's real end (x = 2) the end wall's line is 4 m on.
+  ASSERT_TRUE(c.From(0).Line(1 - at_jamb, &offset));
+  EXPECT_NEAR(std::abs(offset), 4.0, 1e-6);
+}
+
 TEST(Comparison, LeavingAndReenteringStartsANewSubInterval) {
   // B is out of view for 20 iterations in the middle; the comparison must not bridge the gap.
   ComparisonOptions options;

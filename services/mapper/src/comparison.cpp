@@ -116,6 +116,11 @@ Verdict Judge(const SubInterval& s, const ComparisonOptions& options) {
   // Lines are steady whether or not the sensor moves relative to their edges.
   for (int dir = 0; dir < 2; ++dir) {
     for (int i = 0; i < 2; ++i) {
+      // A crossing line is placed along the wall from its edge i: an edge the view cuts (a
+      // jamb's occlusion, a door opening a wall seen whole) is no wall end, however still it
+      // stands, and is not where the wall's end is mapped. A parallel line's offset does not
+      // depend on where along the wall the edge is.
+      if (!parallel && s.cut[2 * dir + i] > (1.0 - kUncutShare) * n) continue;
       if (Std1(s.line[dir][i], n) <= options.static_std && (motion >= options.min_motion ||
                                                              parallel)) {
         v.stats[dir].line_sum[i] += s.line[dir][i][0];
