@@ -45,6 +45,25 @@ Observation SeenAlongX(const Vector2d& a, const Vector2d& b, double x, int64_t k
   return *MakeObservation(testing::WallSeen(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
 }
 
+// The same with its far end cut by the view when `cut`.
+Observation SeenAlongXCut(const Vector2d& a, const Vector2d& b, double x, int64_t k, bool cut) {
+  Observation obs = SeenAlongX(a, b, x, k);
+  obs.cut[FarEnd(obs)] = cut;
+  return obs;
+}
+
+// Driving along x at 0.1 m an iteration up to iteration `last`; the walls fix the pose up to
+// iteration `last_fixed`, then the motion model carries it (truthfully here).
+MapperState DrivingAlongX(int64_t last, int64_t last_fixed) {
+  MapperState state;
+  state.first_iteration = 0;
+  for (int64_t k = 0; k <= last; ++k) {
+    state.poses[k] = {0.1 * static_cast<double>(k), 0.0, 0.0};
+    if (k <= last_fixed) state.fixed_poses.insert(k);
+  }
+  return state;
+}
+
 // Plane 0 (an end wall x = 4) and the others known by their ends (`ends`): group 0 maps the end
 // wall's line, group 1 (made at iteration `created`) knows it by its orientation only, so nothing
 // links group 1's position and its prior places it.
@@ -59,6 +78,23 @@ void PlaceByPriorOnly(MapperState* state, const Observation& end, int64_t create
   state->global = {{0, end_line}};
   state->placed_by = {{0, 0}};
   BuildGlobalMap(*state, 1, MapperOptions{});
+}
+
+// PlaceByPriorOnly with group 1 made at iteration `created` knowing the far ends (x = 3) of the
+// hallway's two sides, `left` (y = 1) and `right` (y = -1): its prior must put both at x = 3.
+void ExpectSidesPlacedAtTheirEnds(MapperState* state, RltPlane left, RltPlane right,
+                                  const Observation& end, int64_t created) {
+  const Placement left_end =
+      Placed(left.Latest().Alpha(), {3, 1}, FarEnd(left.Latest()), Known::kPoint);
+  const Placement right_end =
+      Placed(right.Latest().Alpha(), {3, -1}, FarEnd(right.Latest()), Known::kPoint);
+  state->planes.emplace(0, RltPlane(0, end, 0.05, 1000));
+  state->planes.emplace(1, std::move(left));
+  state->planes.emplace(2, std::move(right));
+  PlaceByPriorOnly(state, end, created, {{1, left_end}, {2, right_end}});
+  ASSERT_TRUE(state->global.count(1) && state->global.count(2));
+  EXPECT_NEAR(state->global.at(1).point.x(), 3.0, 1e-9);
+  EXPECT_NEAR(state->global.at(2).point.x(), 3.0, 1e-9);
 }
 
 TEST(GlobalMap, AGroupRePlacedKeepsTheLinkItTookOverFromAnEarlierGroup) {
@@ -198,17 +234,7 @@ TEST(GlobalMap, AWallEndThatMovedSinceTheSightingBeforeDoesNotSetThePrior) {
   RltPlane right(2, seen({-1, -1}, {2.6, -1}, 0.4, 4), 0.05, 1000);
   right.Add(seen({-1, -1}, {2.75, -1}, 0.5, 5));
   const Observation end = seen({4, -1}, {4, 1}, 0.5, 5);
-  const Placement left_end =
-      Placed(left.Latest().Alpha(), {3, 1}, FarEnd(left.Latest()), Known::kPoint);
-  const Placement right_end =
-      Placed(right.Latest().Alpha(), {3, -1}, FarEnd(right.Latest()), Known::kPoint);
-  state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
-  state.planes.emplace(1, std::move(left));
-  state.planes.emplace(2, std::move(right));
-  PlaceByPriorOnly(&state, end, 6, {{1, left_end}, {2, right_end}});
-  ASSERT_TRUE(state.global.count(1) && state.global.count(2));
-  EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-9);
-  EXPECT_NEAR(state.global.at(2).point.x(), 3.0, 1e-9);
+  ExpectSidesPlacedAtTheirEnds(&state, std::move(left), std::move(right), end, 6);
 }
 
 TEST(GlobalMap, AnEndSightingFarFromWhereFixedPosesSawThatEndDoesNotSetThePrior) {
@@ -221,17 +247,8 @@ TEST(GlobalMap, AnEndSightingFarFromWhereFixedPosesSawThatEndDoesNotSetThePrior)
   // segmenter outlier 0.4 m past the end that a fixed pose saw at x = 3 (§II.C: a wall end
   // stands still). The prior must come from the recess wall's end (iteration 8), not put the
   // group 0.4 m off.
-  const auto seen = [](const Vector2d& a, const Vector2d& b, double x, int64_t k, bool cut) {
-    Observation obs = SeenAlongX(a, b, x, k);
-    obs.cut[FarEnd(obs)] = cut;
-    return obs;
-  };
-  MapperState state;
-  state.first_iteration = 0;
-  for (int64_t k = 0; k <= 10; ++k) {
-    state.poses[k] = {0.1 * static_cast<double>(k), 0.0, 0.0};
-    if (k <= 5) state.fixed_poses.insert(k);
-  }
+  const auto seen = SeenAlongXCut;
+  MapperState state = DrivingAlongX(10, 5);
   RltPlane left(1, seen({-1, 1}, {3, 1}, 0.2, 2, true), 0.05, 1000);
   left.Add(seen({-1, 1}, {3, 1}, 0.5, 5, true));
   left.Add(seen({-1, 1}, {3, 1}, 0.9, 9, true));
@@ -254,6 +271,26 @@ TEST(GlobalMap, AnEndSightingFarFromWhereFixedPosesSawThatEndDoesNotSetThePrior)
   ASSERT_TRUE(state.global.count(2) && state.global.count(3));
   EXPECT_NEAR(state.global.at(2).point.x(), 3.0, 1e-9);
   EXPECT_NEAR(state.global.at(3).point.x(), 3.0, 1e-9);
+}
+
+TEST(GlobalMap, AGroupWhoseEndsTheViewCutWhenItWasMadeIsPlacedFromTheEndsSeenSince) {
+  // Driving along x at 0.1 m an iteration, the walls fixing the pose. Group 1, made at
+  // iteration 6, knows the far ends (x = 3) of the hallway's two sides and the end wall x = 4 by
+  // its orientation only: its position is its prior's. Both sides were first seen after the
+  // group was made, cut by the range at x = 1.5; from iteration 10 on the fixed poses see their
+  // ends. A sighting whose end the view cut says nothing along the wall: the prior must not put
+  // the group 1.5 m short (a side wall first seen where a 6 m range cut it put a group and
+  // every pose after it 1.56 m off).
+  const auto seen = SeenAlongXCut;
+  MapperState state = DrivingAlongX(12, 12);
+  RltPlane left(1, seen({-1, 1}, {1.5, 1}, 0.7, 7, true), 0.05, 1000);
+  RltPlane right(2, seen({-1, -1}, {1.5, -1}, 0.7, 7, true), 0.05, 1000);
+  for (int64_t k = 10; k <= 12; ++k) {
+    left.Add(seen({-1, 1}, {3, 1}, 0.1 * static_cast<double>(k), k, false));
+    right.Add(seen({-1, -1}, {3, -1}, 0.1 * static_cast<double>(k), k, false));
+  }
+  const Observation end = seen({4, -1}, {4, 1}, 1.2, 12, false);
+  ExpectSidesPlacedAtTheirEnds(&state, std::move(left), std::move(right), end, 6);
 }
 
 TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {

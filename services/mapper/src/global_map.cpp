@@ -126,6 +126,32 @@ bool ShowsEnd(const MapperState& state, const RltPlane& plane, const SeenWall& s
   return std::abs(median) <= kFirstEndAgreement;
 }
 
+// The latest sighting of `plane` from a pose the walls fixed that shows its end `ref` (not cut
+// by the view), with that end moved to the median of all such sightings' (one outlier among
+// them does not decide, as in ShowsEnd); invalid when there is none.
+SeenWall EndSeenFromFixedPoses(const MapperState& state, const RltPlane& plane, int ref) {
+  SeenWall latest;
+  if (ref < 0) return latest;
+  std::vector<double> along;  // each sighting's end, along the wall from the latest one's
+  const auto& all = plane.Observations();
+  for (size_t i = all.size(); i > 0; --i) {
+    const Observation& obs = all[i - 1];
+    const auto pose = state.poses.find(obs.iteration);
+    if (obs.cut[ref] || pose == state.poses.end() || state.fixed_poses.count(obs.iteration) == 0) {
+      continue;
+    }
+    const SeenWall seen = SeenFrom(obs, pose->second);
+    if (!latest.valid) latest = seen;
+    along.push_back(DirectionOf(latest.alpha).dot(seen.edge[ref] - latest.edge[ref]));
+  }
+  if (!latest.valid) return latest;
+  std::sort(along.begin(), along.end());
+  const size_t n = along.size();
+  const double median = n % 2 == 1 ? along[n / 2] : 0.5 * (along[n / 2 - 1] + along[n / 2]);
+  latest.edge[ref] += median * DirectionOf(latest.alpha);
+  return latest;
+}
+
 // Prior for group `g`: a member's reference end as seen around when the group was made, put
 // back through its place in the relative map. First choice: the latest sighting of each such end
 // before the group was made, from a pose the walls fixed. A pose the motion model carried
@@ -180,7 +206,13 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
     latest = seen.iteration;
     prior = PlacementFromSighting(seen, rel);
   }
-  return prior;
+  if (latest >= 0) return prior;
+  // No member showed its end around when the group was made (§II.D): the basis's sighting then
+  // says nothing along its wall (a side wall first seen where the 6 m range cut it, 1.6 m short of
+  // its corner, put a group and every pose after it 1.56 m off). Its end as the fixed poses
+  // have seen it since, when they have.
+  const SeenWall since = EndSeenFromFixedPoses(state, *state.Plane(basis), basis_rel.ref);
+  return since.valid ? PlacementFromSighting(since, basis_rel) : prior;
 }
 
 // Does the plane's first sighting show the end `ref` its relative map starts from? Only if the

@@ -54,7 +54,9 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   // Edges cut by the view are never static edges (§II.C).
   MarkOccludedEdges(&observations);
   for (Observation& obs : observations) {
-    for (int e = 0; e < 2; ++e) obs.cut[e] = obs.cut[e] || frustum_.Clipped(obs.edge[e]);
+    for (int e = 0; e < 2; ++e) {
+      obs.cut[e] = obs.cut[e] || frustum_.Clipped(obs.edge[e], obs.edge[1 - e]);
+    }
   }
   const std::vector<int64_t> visible = Register(iteration, observations);  // §II.A
   UpdateGroups(state_, visible, iteration, options_.grouping);             // §II.B

@@ -32,11 +32,12 @@ struct Sighting {
 // bearing (every wall crossing the border gives one, every frame), while wall ends spread over
 // all bearings: the field of view is the most frequent bearing among the widest ones. The
 // widest bearing alone would do without noise, but one noisy edge close by widens it for good
-// and the cut edges then pass for wall ends. The range limit is learned the same way, from a
-// pile-up of edge distances with next to nothing beyond it: in a small world no wall reaches
-// the range and nothing piles up there, so no limit is learned. An edge near either limit is
-// cut by the view, not a wall's end (a sensor turning in place sees a range-cut edge stand
-// still, like a wall end).
+// and the cut edges then pass for wall ends. The range limit is learned the same way, from the
+// farthest pile-up of edge distances with next to nothing beyond it (not the fullest: a wall end
+// seen while turning in place piles up too): in a small world no wall reaches the range and
+// nothing piles up there, so no limit is learned. An edge near either limit is cut by the view,
+// not a wall's end (a sensor turning in place sees a range-cut edge stand still, like a wall
+// end).
 class LearnedFrustum {
  public:
   void Observe(const Eigen::Vector2d& edge);
@@ -45,6 +46,10 @@ class LearnedFrustum {
   // The range limit, or infinity while none stands out.
   double RangeLimit() const;
   bool Clipped(const Eigen::Vector2d& edge) const;
+  // The same for a wall's edge, `other` its other edge: also cut where the wall runs on past it
+  // and reaches the range within the bearing margin (rays grazing a wall sample it sparsely,
+  // and the last sample in range may lie well short of the limit).
+  bool Clipped(const Eigen::Vector2d& edge, const Eigen::Vector2d& other) const;
 
  private:
   static constexpr double kBearingMargin = 0.035;  // rad (2 degrees)
@@ -59,7 +64,6 @@ class LearnedFrustum {
   int counts_[kBins] = {};
   int mode_bin_ = 0;
   std::vector<int> range_counts_ = std::vector<int>(kRangeBins, 0);
-  int range_mode_ = 0;
   int max_range_bin_ = 0;
   int observed_ = 0;
   double range_limit_ = std::numeric_limits<double>::infinity();
