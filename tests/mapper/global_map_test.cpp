@@ -237,6 +237,30 @@ TEST(GlobalMap, AWallEndThatMovedSinceTheSightingBeforeDoesNotSetThePrior) {
   ExpectSidesPlacedAtTheirEnds(&state, std::move(left), std::move(right), end, 6);
 }
 
+TEST(GlobalMap, AWallEndThatCreptAlongWithTheSensorDoesNotSetThePrior) {
+  // As above, driving along x at 0.1 m an iteration, the walls fixing the pose. The right
+  // side's far end is where the sensor's range ends: seen uncut at x = 2 + 0.045 k, it creeps
+  // along with the sensor by less than kEndStill an iteration, so each sighting agrees with the
+  // one before, but the earlier sightings put that end 0.2 m and more behind the latest: it is
+  // not the wall's end (§II.C) and must not pull the group 0.6 m / 2 short.
+  const auto seen = SeenAlongX;
+  MapperState state;
+  state.first_iteration = 0;
+  RltPlane left(1, seen({-1, 1}, {3, 1}, 0.0, 0), 0.05, 1000);
+  RltPlane right(2, seen({-1, -1}, {2, -1}, 0.0, 0), 0.05, 1000);
+  for (int64_t k = 0; k <= 9; ++k) {
+    const double x = 0.1 * static_cast<double>(k);
+    state.poses[k] = {x, 0.0, 0.0};
+    state.fixed_poses.insert(k);
+    if (k == 0) continue;
+    left.Add(seen({-1, 1}, {3, 1}, x, k));
+    right.Add(seen({-1, -1}, {2.0 + 0.045 * static_cast<double>(k), -1}, x, k));
+  }
+  ASSERT_FALSE(right.Latest().cut[FarEnd(right.Latest())]);
+  const Observation end = seen({4, -1}, {4, 1}, 0.9, 9);
+  ExpectSidesPlacedAtTheirEnds(&state, std::move(left), std::move(right), end, 10);
+}
+
 TEST(GlobalMap, AnEndSightingFarFromWhereFixedPosesSawThatEndDoesNotSetThePrior) {
   // Driving along x at 0.1 m an iteration; the walls fix the pose up to iteration 5, then the
   // motion model carries it (truthfully here). Group 1, made at iteration 10, knows the far

@@ -157,6 +157,10 @@ SeenWall EndSeenFromFixedPoses(const MapperState& state, const RltPlane& plane, 
 // before the group was made, from a pose the walls fixed. A pose the motion model carried
 // stood still along the hallway while the sensor moved on, and every group placed from it kept
 // that lag on the map (a hallway with doors lost 0.5 m at each stretch between door frames).
+// Only where the earlier such sightings of that end put it (ShowsEnd, §II.C: a wall end stands
+// still): an end where the sensor's range ends creeps along with the sensor, less than kEndStill
+// an iteration, so the sighting before agrees with it (a group on loop_other_sensor was put
+// 1.7 m along its hallway).
 // The position is the mean over those ends (the heading the latest one's): one end seen metres
 // away is centimetres off, and which end it was changed with the basis chosen afresh at every
 // build (a new group's side walls moved 2.5 cm across the room from one iteration to the next).
@@ -173,7 +177,9 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   for (const auto& [id, rel] : map.members) {
     if (rel.known != Known::kPoint) continue;
     const SeenWall& seen = SeenFromFixedPose(state, g, id);
-    if (!seen.valid || seen.cut[rel.ref]) continue;
+    if (!seen.valid || !ShowsEnd(state, *state.Plane(id), seen, rel.ref, state.groups[g].created)) {
+      continue;
+    }
     const Pose2 p = PlacementFromSighting(seen, rel);
     sum += p.Translation();
     ++ends;
