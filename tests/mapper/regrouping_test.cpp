@@ -22,10 +22,12 @@ Pose2 SensorAt(int64_t k) {
   return {0.01 * k, 0.05 * std::sin(0.05 * k), 0.05 * std::sin(0.03 * k)};
 }
 
-// Plane `id` sees the world wall a-b at iteration k.
-void See(MapperState& state, int64_t id, int64_t k, const Vector2d& a, const Vector2d& b) {
+// Plane `id` sees the world wall a-b at iteration k (both its edges cut by the view if `cut`).
+void See(MapperState& state, int64_t id, int64_t k, const Vector2d& a, const Vector2d& b,
+         bool cut = false) {
   const Pose2 inv = SensorAt(k).Inverse();
   Observation obs = *MakeObservation(testing::WallSeen(inv * a, inv * b), k, 0.3);
+  if (cut) obs.cut[0] = obs.cut[1] = true;
   auto it = state.planes.find(id);
   if (it == state.planes.end()) {
     state.planes.emplace(id, RltPlane(id, obs, 0.05, 3000));
@@ -103,6 +105,41 @@ TEST(Regrouping, ReorderingChainsEachMemberThroughItsLongestComparison) {
     EXPECT_NEAR(geometry::WrapAngle(p.alpha - basis.alpha),
                 geometry::WrapAngle(world(id).alpha - world(b).alpha), 1e-9);
   }
+}
+
+// A short piece beside a door is fitted a few degrees off, differently as the view of it
+// changes: piece P (0.4 m, on the right) is seen turned by +4 degrees while A (on the left) is in
+// view, by -4 degrees while B (across the way, its ends cut by the view) is, and straight in
+// between, when A and B are both in view. No end shows static, so P, the first member, is the
+// basis and A and B are placed from it: B's orientation relative to A carries P's two errors
+// (5.3 degrees), while the comparison of A with B itself says 90 degrees exactly. Each member's
+// orientation from all its comparisons (§II.D relative map, §II.F: the comparisons' averages), a
+// piece's weighed by what its length leaves of its fit, puts B within a degree (issue #4's target)
+// of its world orientation relative to A.
+TEST(RelativeMap, AWallsOrientationComesFromAllItsComparisonsNotOneChainThroughAShortPiece) {
+  MapperOptions options;
+  MapperState state;
+  const int64_t p = 0, a = 1, b = 2;
+  const Vector2d kP0{2, -2}, kP1{2.4, -2};
+  for (int64_t k = 0; k < 150; ++k) {
+    if (k < 90) See(state, a, k, kB0, kB1);
+    if (k >= 60) See(state, b, k, kA0, kA1, true);
+    // P turned about its middle by the fit's error.
+    const double error = k < 60 ? 4.0 : (k < 90 ? 0.0 : -4.0);
+    const Vector2d mid = 0.5 * (kP0 + kP1);
+    const Eigen::Matrix2d turn = Eigen::Rotation2Dd(error * M_PI / 180.0).toRotationMatrix();
+    See(state, p, k, mid + turn * (kP0 - mid), mid + turn * (kP1 - mid));
+  }
+  AddGroup(state, {p, a, b}, 0);
+  CompareMembers(state, state.groups[0], 149, options);
+  const RelativeMap map = BuildRelativeMap(state.groups[0], state);
+  ASSERT_EQ(map.members.count(a) + map.members.count(b), 2u);
+  const auto world = [&](int64_t id) {
+    const RltPlane& plane = state.planes.at(id);
+    return SeenFrom(plane.Latest(), SensorAt(plane.LastSeen())).alpha;
+  };
+  const double relative = map.members.at(b).alpha - map.members.at(a).alpha;
+  EXPECT_NEAR(geometry::WrapAngle(relative - (world(b) - world(a))), 0.0, 1.0 * M_PI / 180.0);
 }
 
 // The static pairings of a group form two sets with none between them: A (across the way) and

@@ -19,6 +19,14 @@ Eigen::Matrix2d RotationT(double alpha) {
   return r;
 }
 
+// m: the segmenter's fit of a piece is known to about this over its length (as in the published
+// map's cleanup: a 0.2 m piece beside a jamb is a median 2.4 degrees off on the noisy office).
+constexpr double kShortPieceBlur = 0.03;
+
+double PieceBlur(const Observation& obs) {
+  return std::atan2(kShortPieceBlur, std::max(obs.Length(), 1e-3));
+}
+
 // Adds one iteration's untransformed pair to the sub-interval's sums (§II.C algorithm: "rotate
 // both planes so rltplane 1 is at 0 degrees, add the dx dy to L_av, the orientation to O_av").
 void AddSample(const Observation& oa, const Observation& ob, SubInterval* s) {
@@ -34,6 +42,12 @@ void AddSample(const Observation& oa, const Observation& ob, SubInterval* s) {
   s->wsin_sum += w * std::sin(dalpha);
   s->wcos_sum += w * std::cos(dalpha);
   s->information += w;
+  const double pa = PieceBlur(oa), pb = PieceBlur(ob);
+  const double wp =
+      1.0 / (1.0 / OrientationWeight(oa) + 1.0 / OrientationWeight(ob) + pa * pa + pb * pb);
+  s->psin_sum += wp * std::sin(dalpha);
+  s->pcos_sum += wp * std::cos(dalpha);
+  s->piece_information += wp;
   const Eigen::Matrix2d rat = RotationT(alpha_a), rbt = RotationT(alpha_b);
   const Vector2d nb_in_a = rat * ob.normal, na_in_b = rbt * oa.normal;
   for (int i = 0; i < 2; ++i) {
@@ -230,6 +244,11 @@ double Comparison::DeltaAlpha(int64_t from) const {
   return from == a_ ? d : -d;
 }
 
+double Comparison::PieceAlpha(int64_t from) const {
+  const double d = std::atan2(psin_sum_, pcos_sum_);
+  return from == a_ ? d : -d;
+}
+
 void Comparison::Update(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options,
                         int max_gap) {
   Rebuild(a, b, now, options, max_gap);
@@ -296,6 +315,9 @@ void Comparison::Rebuild(RltPlane& a, RltPlane& b, int64_t now, const Comparison
     frozen_wsin_ += s.wsin_sum;
     frozen_wcos_ += s.wcos_sum;
     frozen_information_ += s.information;
+    frozen_psin_ += s.psin_sum;
+    frozen_pcos_ += s.pcos_sum;
+    frozen_piece_information_ += s.piece_information;
     frozen_ambiguous_ += v.ambiguous ? 1 : 0;
     frozen_until_ = s.last + 1;
     open_.erase(open_.begin());
@@ -310,6 +332,9 @@ void Comparison::Summarise(RltPlane& a, RltPlane& b, int64_t now,
   wsin_sum_ = frozen_wsin_;
   wcos_sum_ = frozen_wcos_;
   information_ = frozen_information_;
+  psin_sum_ = frozen_psin_;
+  pcos_sum_ = frozen_pcos_;
+  piece_information_ = frozen_piece_information_;
   ambiguous_ = frozen_ambiguous_;
   for (const SubInterval& s : open_) {
     const Verdict v = Judge(s, options);
@@ -319,6 +344,9 @@ void Comparison::Summarise(RltPlane& a, RltPlane& b, int64_t now,
     wsin_sum_ += s.wsin_sum;
     wcos_sum_ += s.wcos_sum;
     information_ += s.information;
+    psin_sum_ += s.psin_sum;
+    pcos_sum_ += s.pcos_sum;
+    piece_information_ += s.piece_information;
     ambiguous_ += v.ambiguous ? 1 : 0;
     if (v.static_a[0] && v.static_a[1]) a.MarkFull(s.first, s.last);
     if (v.static_b[0] && v.static_b[1]) b.MarkFull(s.first, s.last);

@@ -52,6 +52,10 @@ struct SubInterval {
   double wsin_sum = 0.0;
   double wcos_sum = 0.0;
   double information = 0.0;
+  // The same with each fit's bias added to its variance (see Comparison::PieceAlpha).
+  double psin_sum = 0.0;
+  double pcos_sum = 0.0;
+  double piece_information = 0.0;
   // [0]: B seen from A, [1]: A seen from B. Per pairing: x, y, x^2, y^2 sums.
   double pair[2][2][2][4] = {};
   double npair[2][2] = {};  // samples of pairing [i][j] where neither edge was cut
@@ -84,6 +88,14 @@ class Comparison {
   double DeltaAlpha(int64_t from) const;
   // Information (rad^-2) of DeltaAlpha: the sum of the iterations' weights.
   double Information() const { return information_; }
+  // The orientation difference and its information with each fit's bias over its length added
+  // to each iteration's variance: a short piece's fit is off by up to a few centimetres over its
+  // length (a piece beside a jamb takes some of the jamb's points), which its noise alone does
+  // not say. Added per iteration, not once per comparison: once, every comparison's weight would
+  // be its pieces' bias alone, whatever the length of its interval (a comparison of two walls
+  // over 5 iterations weighed as one over 500).
+  double PieceAlpha(int64_t from) const;
+  double PieceInformation() const { return piece_information_; }
   // Iterations in the common interval so far.
   double Common() const { return common_; }
   // Sub-intervals dropped as ambiguous (§II.C parallel planes) so far.
@@ -102,6 +114,9 @@ class Comparison {
   double frozen_wsin_ = 0.0;
   double frozen_wcos_ = 0.0;
   double frozen_information_ = 0.0;
+  double frozen_psin_ = 0.0;
+  double frozen_pcos_ = 0.0;
+  double frozen_piece_information_ = 0.0;
   int frozen_ambiguous_ = 0;
   int64_t frozen_until_ = INT64_MIN;
   std::vector<SubInterval> open_;
@@ -112,6 +127,9 @@ class Comparison {
   double wsin_sum_ = 0.0;
   double wcos_sum_ = 0.0;
   double information_ = 0.0;
+  double psin_sum_ = 0.0;
+  double pcos_sum_ = 0.0;
+  double piece_information_ = 0.0;
   double common_ = 0.0;
   int ambiguous_ = 0;
 };
