@@ -16,7 +16,7 @@ Eigen::Matrix2d Rot(double a) { return Eigen::Rotation2Dd(a).toRotationMatrix();
 
 // B's edge j seen from A's edge i, also through the other edge of a wall seen whole.
 bool PairThrough(const Comparison& c, const RltPlane& a, int i, int* j, Vector2d* delta,
-                 double* weight) {
+                 double* weight, double* variance) {
   const DirectedStats& s = c.From(a.Id());
   *weight = 0.0;
   for (int ii = 0; ii < 2; ++ii) {
@@ -34,6 +34,7 @@ bool PairThrough(const Comparison& c, const RltPlane& a, int i, int* j, Vector2d
       *delta = d;
       *j = jj;
       *weight = w;
+      *variance = s.PairStd(ii, jj) * s.PairStd(ii, jj);
     }
   }
   return *weight > 0.0;
@@ -47,11 +48,15 @@ bool PlacePoint(const Placement& from_placed, int64_t from, int64_t to, MapperSt
   if (c == nullptr) return false;
   int j = -1;
   Vector2d delta;
-  if (!PairThrough(*c, *state.Plane(from), from_placed.ref, &j, &delta, weight)) return false;
+  double variance = 0.0;
+  if (!PairThrough(*c, *state.Plane(from), from_placed.ref, &j, &delta, weight, &variance)) {
+    return false;
+  }
   out->alpha = from_placed.alpha + c->DeltaAlpha(from);
   out->point = from_placed.point + Rot(from_placed.alpha) * delta;
   out->ref = j;
   out->known = Known::kPoint;
+  out->variance = from_placed.variance + variance;
   return true;
 }
 
@@ -72,6 +77,7 @@ bool PlaceLine(const Placement& p, int64_t from, int64_t to, const MapperState& 
   out->alpha = p.alpha + dalpha;
   out->point = p.point + Rot(p.alpha) * (offset * NormalOf(dalpha));
   out->known = Known::kLine;
+  out->variance = p.variance;
   return true;
 }
 

@@ -62,7 +62,8 @@ struct LocalisationOptions {
 struct PoseGraphOptions {
   bool enabled = true;
   double angle_sigma = 0.005;    // rad, agreement of a shared plane's orientation in two groups
-  double position_sigma = 0.01;  // m, agreement of its line and static edge
+  double position_sigma = 0.01;  // m, agreement of its line and static edge, plus the spread
+                                 // of the static pairings that placed it (Placement::variance)
   // m (and rad): each group's placement as chained, weighed as the chain weighs its prior
   // against a line (localisation.prior_weight 1e-4: position_sigma / sqrt(1e-4)). At 100 m, a
   // gauge only, a direction the ties hardly observe slid by metres for a negligible gain.

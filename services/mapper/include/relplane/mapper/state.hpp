@@ -30,6 +30,9 @@ struct Placement {
   bool has_other = false;
   Eigen::Vector2d other = Eigen::Vector2d::Zero();
   int64_t other_by = -1;
+  // Relative maps only: variance (m^2) of `point` from the basis, summed over the chain of
+  // static pairings that placed it (each pairing's spread over its interval, §II.C).
+  double variance = 0.0;
 };
 
 // §II.D relative map of one group, in the frame of its basis rltplane.
