@@ -142,6 +142,31 @@ TEST(RelativeMap, AWallsOrientationComesFromAllItsComparisonsNotOneChainThroughA
   EXPECT_NEAR(geometry::WrapAngle(relative - (world(b) - world(a))), 0.0, 1.0 * M_PI / 180.0);
 }
 
+// §II.C: a pairing's spread over its interval says how well it places the member. A's ends are
+// seen 2 cm either side of where they are, in turn (the ends of a wall at a grazing angle, where
+// the sensor's rays last hit it), for 60 iterations; B and C are seen exactly, for 150. The
+// relative map keeps, with each placement, the variance its chain of pairings adds up to: the pose
+// graph weighs its ties by it.
+TEST(Regrouping, APlacementCarriesTheSpreadOfThePairingsThatPlacedIt) {
+  MapperOptions options;
+  MapperState state;
+  const int64_t a = 0, b = 1, c = 2;
+  for (int64_t k = 0; k < 150; ++k) {
+    const Vector2d jitter(0.0, k % 2 == 0 ? 0.02 : -0.02);
+    if (k < 60) See(state, a, k, kA0 + jitter, kA1 + jitter);
+    See(state, b, k, kB0, kB1);
+    See(state, c, k, kC0, kC1);
+  }
+  AddGroup(state, {a, b, c}, 0);
+  CompareMembers(state, state.groups[0], 149, options);
+  const RelativeMap map = BuildRelativeMap(state.groups[0], state);
+  ASSERT_EQ(map.members.size(), 3u);
+  for (int64_t id : {a, b, c}) ASSERT_EQ(map.members.at(id).known, Known::kPoint) << id;
+  EXPECT_NE(map.basis, a);
+  EXPECT_NEAR(map.members.at(a).variance, 0.02 * 0.02, 0.5 * 0.02 * 0.02);
+  EXPECT_LT(map.members.at(map.basis == b ? c : b).variance, 1e-6);
+}
+
 // The static pairings of a group form two sets with none between them: A (across the way) and
 // B (on the left) show their ends for the first 80 iterations, then the view cuts both; C (on
 // the right) and H (the corner C meets) show theirs from then on, for 120 iterations, so a
