@@ -183,5 +183,32 @@ TEST(PoseGraph, AnEndPlacedThroughASpreadPairingDoesNotTurnTheGroups) {
   EXPECT_NEAR(state.groups[1].placement.yaw, 0.0, 0.1 * M_PI / 180.0);
 }
 
+TEST(PoseGraph, SolvingAgainWithNothingNewLeavesTheGroupsWhereTheyAre) {
+  // Two groups share the side walls of a hallway (y = 1 and y = -1) and one end of the upper
+  // one, placed in group 1 through a static pairing spread 1 m over its interval and 0.5 m off
+  // along the wall: the end is group 1's only hold along the hallway, about as weak as its prior.
+  // A loop closes again and again (each closing tie that learns more solves the graph anew): a
+  // prior centred on where the last solve left the group counted the end again at every solve,
+  // and group 1 slid along the hallway a little further each time (0.25, 0.375, ... m).
+  MapperState state = GroupsAtTheOrigin(2);
+  AddTie(&state, 0, 0.0, {0, -1}, 1, 0.0, {0, -1});
+  const int64_t wall = AddPlane(&state, {0, 1});
+  Placement seen_well = Line(0.0, {3, 1});
+  seen_well.known = Known::kPoint;
+  seen_well.ref = 0;
+  Placement spread = seen_well;
+  spread.point.x() += 0.5;
+  spread.variance = 1.0;
+  state.groups[0].relative.members[wall] = seen_well;
+  state.groups[1].relative.members[wall] = spread;
+  OptimiseGroupPlacements(state, PoseGraphOptions{});
+  const geometry::Pose2 first = state.groups[1].placement;
+  EXPECT_LT(first.x, -0.1);  // the end does pull it (the prior is weak, not a hard anchor)
+  for (int solve = 0; solve < 10; ++solve) OptimiseGroupPlacements(state, PoseGraphOptions{});
+  EXPECT_NEAR(state.groups[1].placement.x, first.x, 1e-3);
+  EXPECT_NEAR(state.groups[1].placement.y, first.y, 1e-3);
+  EXPECT_NEAR(state.groups[1].placement.yaw, first.yaw, 1e-4);
+}
+
 }  // namespace
 }  // namespace relplane::mapper

@@ -441,6 +441,8 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
       }
     }
     group.placement = Solve(links, prior, options.localisation.prior_weight);
+    group.chained = group.placement;
+    group.has_chained = true;
     PlaceMembers(state, g, options);
     group.loop_evidence = GroupLoopEvidence(state, g, options.grouping.recent_groups);
   }

@@ -67,6 +67,10 @@ struct Group {
   ChainOrder order;              // kept from the reordering on (§II.F)
   RelativeMap relative;
   geometry::Pose2 placement;     // world <- group frame (§II.D)
+  // The placement hard chaining gave it when it was last placed (§II.D), which a pose graph
+  // solve does not change: the centre of the group's prior in the graph (pose_graph.cpp).
+  geometry::Pose2 chained;
+  bool has_chained = false;
   // Members as seen when the group was made, from the pose then: the basis gives the prior
   // placement, a member placed by orientation only its line. Kept so the group can be placed
   // again after the observations are dropped.
