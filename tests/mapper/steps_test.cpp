@@ -410,6 +410,36 @@ TEST(Localisation, TwoWallsGiveThePoseOneWallTheMotionModel) {
   EXPECT_EQ(Localise({}, previous, frustum, options).status, PoseStatus::kLost);
 }
 
+TEST(Localisation, AWallEndSeenFromAFixedPoseMovesThePositionAlongTheHeadingOnly) {
+  // §II.E: one wall, y = 1, known by its line; its end (3, 1) was seen uncut from a pose the
+  // walls fixed. Seen 5 cm nearer now, it shows the sensor moved 5 cm along the wall.
+  LearnedFrustum frustum;  // a view 174 degrees wide
+  frustum.Observe({0.05, 1.0});
+  frustum.Observe({0.05, -1.0});
+  const Vector2d end(3, 1);
+  for (const double yaw : {0.0, M_PI / 2}) {
+    const geometry::Pose2 truth{0.05, 0.0, yaw};
+    const geometry::Pose2 inv = truth.Inverse();
+    // Heading along the wall, then across it (the end 71 degrees to the side).
+    RltPlane wall(0, *MakeObservation(Wall(inv * Vector2d(1.5, 1), inv * end), 1, 0.3), 0.05, 100);
+    Placement line;
+    line.alpha = geometry::WrapAngle(yaw + wall.Latest().Alpha());
+    line.point = {0, 1};
+    line.known = Known::kLine;
+    Sighting seen{&wall.Latest(), &wall, line};
+    const int e = (truth * wall.Latest().edge[0] - end).norm() < 1e-6 ? 0 : 1;
+    seen.end_seen[e] = true;
+    seen.end[e] = end;
+    const geometry::Pose2 previous{0.0, 0.0, yaw};
+    const PoseEstimate est = Localise({seen}, previous, frustum, LocalisationOptions{});
+    EXPECT_EQ(est.status, PoseStatus::kMotionModel);
+    EXPECT_NEAR(est.pose.y, 0.0, 1e-6);
+    // Heading across the open direction the position along it stays: the platform drives
+    // forwards, and an end seen at another angle is off by its sampling.
+    EXPECT_NEAR(est.pose.x, yaw == 0.0 ? truth.x : previous.x, 1e-6) << "yaw " << yaw;
+  }
+}
+
 TEST(Localisation, WallsThatAllDisagreeKeepThePreviousPose) {
   // Two pairs of facing walls (x = 4 and x = -4, y = 1 and y = -1), the first of each pair seen
   // 1 m nearer than mapped (mis-registered): the first round's pose lies halfway, every wall is

@@ -126,32 +126,6 @@ bool ShowsEnd(const MapperState& state, const RltPlane& plane, const SeenWall& s
   return std::abs(median) <= kFirstEndAgreement;
 }
 
-// The latest sighting of `plane` from a pose the walls fixed that shows its end `ref` (not cut
-// by the view), with that end moved to the median of all such sightings' (one outlier among
-// them does not decide, as in ShowsEnd); invalid when there is none.
-SeenWall EndSeenFromFixedPoses(const MapperState& state, const RltPlane& plane, int ref) {
-  SeenWall latest;
-  if (ref < 0) return latest;
-  std::vector<double> along;  // each sighting's end, along the wall from the latest one's
-  const auto& all = plane.Observations();
-  for (size_t i = all.size(); i > 0; --i) {
-    const Observation& obs = all[i - 1];
-    const auto pose = state.poses.find(obs.iteration);
-    if (obs.cut[ref] || pose == state.poses.end() || state.fixed_poses.count(obs.iteration) == 0) {
-      continue;
-    }
-    const SeenWall seen = SeenFrom(obs, pose->second);
-    if (!latest.valid) latest = seen;
-    along.push_back(DirectionOf(latest.alpha).dot(seen.edge[ref] - latest.edge[ref]));
-  }
-  if (!latest.valid) return latest;
-  std::sort(along.begin(), along.end());
-  const size_t n = along.size();
-  const double median = n % 2 == 1 ? along[n / 2] : 0.5 * (along[n / 2 - 1] + along[n / 2]);
-  latest.edge[ref] += median * DirectionOf(latest.alpha);
-  return latest;
-}
-
 // Prior for group `g`: a member's reference end as seen around when the group was made, put
 // back through its place in the relative map. First choice: the latest sighting of each such end
 // before the group was made, from a pose the walls fixed. A pose the motion model carried
@@ -308,6 +282,29 @@ Placement PlacementOf(const SeenWall& seen, int ref) {
   p.ref = ref;
   p.known = ref >= 0 ? Known::kPoint : Known::kLine;
   return p;
+}
+
+SeenWall EndSeenFromFixedPoses(const MapperState& state, const RltPlane& plane, int ref) {
+  SeenWall latest;
+  if (ref < 0) return latest;
+  std::vector<double> along;  // each sighting's end, along the wall from the latest one's
+  const auto& all = plane.Observations();
+  for (size_t i = all.size(); i > 0; --i) {
+    const Observation& obs = all[i - 1];
+    const auto pose = state.poses.find(obs.iteration);
+    if (obs.cut[ref] || pose == state.poses.end() || state.fixed_poses.count(obs.iteration) == 0) {
+      continue;
+    }
+    const SeenWall seen = SeenFrom(obs, pose->second);
+    if (!latest.valid) latest = seen;
+    along.push_back(DirectionOf(latest.alpha).dot(seen.edge[ref] - latest.edge[ref]));
+  }
+  if (!latest.valid) return latest;
+  std::sort(along.begin(), along.end());
+  const size_t n = along.size();
+  const double median = n % 2 == 1 ? along[n / 2] : 0.5 * (along[n / 2 - 1] + along[n / 2]);
+  latest.edge[ref] += median * DirectionOf(latest.alpha);
+  return latest;
 }
 
 Placement PlacementOf(const Observation& obs, const Pose2& pose, int ref) {

@@ -15,6 +15,8 @@ using Eigen::Vector2d;
 
 constexpr double kOutlier = 0.3;      // m: a wall this far from its line is left out
 constexpr double kEdgeGate = 0.1;     // m: motion model snaps to a mapped end this close
+// cos 45 deg: an open direction this near the heading is one the sensor may move along.
+constexpr double kAlongHeading = 0.7071;
 // rad: orientation sigma every wall has whatever its fit says (the map's own error), so the
 // best-fitting walls do not take all the weight.
 constexpr double kOrientationFloor = 0.001;
@@ -213,18 +215,47 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
     const bool tracking = planes.size() >= 2 && information >= options.min_information;
     if (!tracking) {
       // §II.E motion model: a mapped wall end seen where the previous position predicts it.
+      // Failing that, a wall end seen uncut from poses the walls fixed: a wall end stands still
+      // (§II.C), so where it is seen now shows how far the sensor moved along the wall, as the
+      // paper's growing partial plane does. Only the end the sensor samples finest: the spacing
+      // of its rays along a wall grows as r^2 / h (r the end's distance, h the wall's), and a far
+      // end seen at a glancing angle moves in steps of that spacing (0.1-0.3 m 3-5 m away down a
+      // 2 m hallway, where one 2 m away is seen within 2 cm).
+      const Vector2d open = eig.eigenvectors().col(0);
+      bool finest = false;
+      Vector2d finest_dir = Vector2d::Zero();
+      double finest_along = 0.0, finest_spacing = std::numeric_limits<double>::infinity();
       for (size_t k = 0; k < sightings.size(); ++k) {
         const Sighting& x = sightings[k];
-        if (!use[k] || x.world.known != Known::kPoint) continue;
+        if (!use[k] || x.world.known == Known::kAngle) continue;
         const Vector2d t = DirectionOf(x.world.alpha);
         for (int e = 0; e < 2; ++e) {
           Vector2d mapped;
           if (frustum.Clipped(x.obs->edge[e])) continue;  // cut by the view, not a wall end
-          if (!EdgePoint(*x.plane, x.world, e, &mapped)) continue;
-          const double along = t.dot(mapped - rot * x.obs->edge[e]);
-          if (std::abs(along - t.dot(previous.Translation())) < kEdgeGate) sys.Add(t, along);
+          const bool placed =
+              x.world.known == Known::kPoint && EdgePoint(*x.plane, x.world, e, &mapped);
+          if (!placed && (!x.end_seen[e] || x.obs->cut[e])) continue;
+          const double along = t.dot((placed ? mapped : x.end[e]) - rot * x.obs->edge[e]);
+          if (std::abs(along - t.dot(previous.Translation())) >= kEdgeGate) continue;
+          if (placed) {
+            sys.Add(t, along);
+            continue;
+          }
+          const double h = std::abs(NormalOf(x.obs->Alpha()).dot(x.obs->edge[e]));
+          const double spacing =
+              h > 0.0 ? x.obs->edge[e].squaredNorm() / h : std::numeric_limits<double>::infinity();
+          if (spacing < finest_spacing) {
+            finest_spacing = spacing, finest_along = along;
+            finest = true;
+            finest_dir = t;
+          }
         }
       }
+      // The platform drives forwards (as the learnt velocity takes it): along an open direction
+      // across the heading the position stays where it was, whatever an end seen at another
+      // angle, off by its sampling, says (an office's door jamb moved it 1.3 cm a frame).
+      const bool along_heading = std::abs(open.dot(rot.col(0))) >= kAlongHeading;
+      if (finest && along_heading) sys.Add(finest_dir, finest_along);
     }
     // The previous position only decides a direction the walls leave open.
     const Vector2d pos = SolveWithPrior(sys.a, sys.b, previous.Translation(),

@@ -18,6 +18,11 @@ Placement PlacementOf(const Observation& obs, const geometry::Pose2& pose, int r
 // The same for a wall seen earlier, already in the world.
 Placement PlacementOf(const SeenWall& seen, int ref);
 
+// The latest sighting of `plane` from a pose the walls fixed that shows its end `ref` (not cut
+// by the view), with that end moved to the median of all such sightings' (one outlier among
+// them does not decide); invalid when there is none.
+SeenWall EndSeenFromFixedPoses(const MapperState& state, const RltPlane& plane, int ref);
+
 // The mapped wall's two ends (lo, hi along its direction): its static edges where known, else
 // its length from the known one; for a wall known only by its line, the extent last seen, from
 // the pose then.

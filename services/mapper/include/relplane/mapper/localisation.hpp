@@ -26,6 +26,10 @@ struct Sighting {
   const Observation* obs = nullptr;
   const RltPlane* plane = nullptr;
   Placement world;
+  // Where each end of the wall stood when seen uncut from poses the walls fixed (the median of
+  // those sightings): for the §II.E motion model, a wall end the map does not place yet.
+  bool end_seen[2] = {false, false};
+  Eigen::Vector2d end[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
 };
 
 // The sensor's view as learned from the edges it reports. Edges cut by the view pile up at one

@@ -55,12 +55,15 @@ class Mapper {
   void Compare(int64_t iteration, const std::vector<int64_t>& visible);
   void BuildMaps();
   PoseEstimate Localise(int64_t iteration, const std::vector<int64_t>& visible);
-  geometry::Pose2 Predict(int64_t iteration) const;
+  // `known`: whether the motion is known: a velocity learnt from a stretch of motion (not a
+  // turn on the spot), or turning on the spot now (standing still).
+  geometry::Pose2 Predict(int64_t iteration, bool* known) const;
 
   MapperOptions options_;
   MapperState state_;
   geometry::Pose2 pose_;
   geometry::Pose2 predicted_;  // pose_ moved on at the learnt velocity to this iteration
+  bool motion_known_ = false;  // Predict's `known` for this iteration
   LearnedFrustum frustum_;
   int64_t last_iteration_ = -1;
   int64_t previous_iteration_ = -1;  // the iteration before last_iteration_
