@@ -126,6 +126,19 @@ bool ShowsEnd(const MapperState& state, const RltPlane& plane, const SeenWall& s
   return std::abs(median) <= kFirstEndAgreement;
 }
 
+// ShowsEnd for a member of group `g`, judged once: the sightings before the group was made do
+// not change.
+bool MemberShowsEnd(MapperState& state, size_t g, int64_t id, const SeenWall& seen, int ref) {
+  Group& group = state.groups[g];
+  const auto key = std::make_tuple(id, ref, seen.iteration);
+  auto it = group.shows_end.find(key);
+  if (it == group.shows_end.end()) {
+    it = group.shows_end.emplace(key, ShowsEnd(state, *state.Plane(id), seen, ref, group.created))
+             .first;
+  }
+  return it->second;
+}
+
 // Prior for group `g`: a member's reference end as seen around when the group was made, put
 // back through its place in the relative map. First choice: the latest sighting of each such end
 // before the group was made, from a pose the walls fixed. A pose the motion model carried
@@ -151,7 +164,7 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   for (const auto& [id, rel] : map.members) {
     if (rel.known != Known::kPoint) continue;
     const SeenWall& seen = SeenFromFixedPose(state, g, id);
-    if (!seen.valid || !ShowsEnd(state, *state.Plane(id), seen, rel.ref, state.groups[g].created)) {
+    if (!seen.valid || !MemberShowsEnd(state, g, id, seen, rel.ref)) {
       continue;
     }
     const Pose2 p = PlacementFromSighting(seen, rel);
@@ -182,7 +195,7 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
     if (id == basis || rel.known != Known::kPoint) continue;
     const SeenWall seen = SeenWhenMade(state, g, id, options);
     if (seen.iteration <= latest) continue;
-    if (!ShowsEnd(state, *state.Plane(id), seen, rel.ref, state.groups[g].created)) continue;
+    if (!MemberShowsEnd(state, g, id, seen, rel.ref)) continue;
     latest = seen.iteration;
     prior = PlacementFromSighting(seen, rel);
   }

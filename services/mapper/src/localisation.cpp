@@ -133,8 +133,12 @@ double OrientationWeight(const Observation& obs) {
 }
 
 double OrientationWeight(const RltPlane& plane) {
+  const auto& all = plane.Observations();
+  RltPlane::ObservationCache& cache = plane.orientation_weight;
+  if (cache.Holds(all)) return cache.value;
   double best = 0.0;
-  for (const Observation& obs : plane.Observations()) best = std::max(best, OrientationWeight(obs));
+  for (const Observation& obs : all) best = std::max(best, OrientationWeight(obs));
+  cache = {all.size(), all.front().iteration, all.back().iteration, best};
   return best;
 }
 

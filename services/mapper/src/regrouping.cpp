@@ -41,6 +41,9 @@ void Leave(MapperState& state, Group& group, int64_t id) {
   group.relative.members.erase(id);
   group.seen.erase(id);
   group.seen_fixed.erase(id);
+  for (auto it = group.shows_end.begin(); it != group.shows_end.end();) {
+    it = std::get<0>(it->first) == id ? group.shows_end.erase(it) : std::next(it);
+  }
   group.dirty = true;
   RltPlane* plane = state.Plane(id);
   plane->groups.erase(std::remove(plane->groups.begin(), plane->groups.end(), group.id),

@@ -230,36 +230,33 @@ RelativeMap GrowFromBest(const Group& group, MapperState& state,
 // orientations moved no recording's ATE by more than 2 mm).
 void RefineOrientations(const MapperState& state, RelativeMap* map) {
   // Least squares on the angles' corrections from the chain's values (within a few degrees of
-  // the solution, so linear), the basis held.
+  // the solution, so linear), the basis held: unknown k is member ids[k], the basis is last.
   std::vector<int64_t> ids;
-  std::map<int64_t, int> index;
-  for (const auto& [id, p] : map->members) {
+  std::vector<Placement*> placed;
+  for (auto& [id, p] : map->members) {
     if (id == map->basis) continue;
-    index[id] = static_cast<int>(ids.size());
     ids.push_back(id);
+    placed.push_back(&p);
   }
   const int n = static_cast<int>(ids.size());
   if (n == 0) return;
+  ids.push_back(map->basis);
+  placed.push_back(&map->members.at(map->basis));
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
-  std::vector<int64_t> all(ids);
-  all.push_back(map->basis);
-  for (size_t x = 0; x < all.size(); ++x) {
-    for (size_t y = x + 1; y < all.size(); ++y) {
-      const Comparison* cmp = state.FindComparison(all[x], all[y]);
-      if (cmp == nullptr || cmp->PieceInformation() <= 0.0) continue;
+  for (int x = 0; x <= n; ++x) {
+    for (int y = x + 1; y <= n; ++y) {
+      const Comparison* cmp = state.FindComparison(ids[x], ids[y]);
+      if (cmp == nullptr) continue;
       const double w = cmp->PieceInformation();
+      if (w <= 0.0) continue;
       // Residual of theta_y - theta_x - delta at the chain's values.
-      const double r = geometry::WrapAngle(map->members.at(all[y]).alpha -
-                                           map->members.at(all[x]).alpha - cmp->PieceAlpha(all[x]));
-      const auto ix = index.find(all[x]), iy = index.find(all[y]);
-      // d(residual)/d(correction): +1 for y, -1 for x.
-      if (iy != index.end()) a(iy->second, iy->second) += w, b(iy->second) -= w * r;
-      if (ix != index.end()) a(ix->second, ix->second) += w, b(ix->second) += w * r;
-      if (ix != index.end() && iy != index.end()) {
-        a(ix->second, iy->second) -= w;
-        a(iy->second, ix->second) -= w;
-      }
+      const double r =
+          geometry::WrapAngle(placed[y]->alpha - placed[x]->alpha - cmp->PieceAlpha(ids[x]));
+      // d(residual)/d(correction): +1 for y, -1 for x (the basis, index n, is held).
+      if (y < n) a(y, y) += w, b(y) -= w * r;
+      a(x, x) += w, b(x) += w * r;  // x < y <= n: never the basis
+      if (y < n) a(x, y) -= w, a(y, x) -= w;
     }
   }
   // A member with no comparison keeps its chain value.
@@ -267,13 +264,8 @@ void RefineOrientations(const MapperState& state, RelativeMap* map) {
     if (a(k, k) <= 0.0) a(k, k) = 1.0;
   }
   const Eigen::VectorXd dx = a.ldlt().solve(b);
-  for (int k = 0; k < n; ++k) {
-    if (!std::isfinite(dx(k))) return;
-  }
-  for (int k = 0; k < n; ++k) {
-    Placement& p = map->members.at(ids[k]);
-    p.alpha = geometry::WrapAngle(p.alpha + dx(k));
-  }
+  if (!dx.allFinite()) return;
+  for (int k = 0; k < n; ++k) placed[k]->alpha = geometry::WrapAngle(placed[k]->alpha + dx(k));
 }
 
 // The comparison order that uses the most iterations (§II.F reordering) and the map it gives.

@@ -66,6 +66,21 @@ class RltPlane {
   // Groups this plane belongs to, in creation order (§II.B).
   std::vector<int64_t> groups;
 
+  // A value computed from all stored observations (OrientationWeight), kept with the
+  // observations it was computed from: recomputing it for every link of every group placement
+  // took a tenth of an iteration.
+  struct ObservationCache {
+    size_t size = 0;
+    int64_t first = -1;
+    int64_t last = -1;
+    double value = 0.0;
+    bool Holds(const std::deque<Observation>& obs) const {
+      return !obs.empty() && size == obs.size() && first == obs.front().iteration &&
+             last == obs.back().iteration;
+    }
+  };
+  mutable ObservationCache orientation_weight;
+
  private:
   int64_t id_;
   double hysteresis_;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <set>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -78,6 +79,10 @@ struct Group {
   // Members as last seen before the group was made from a pose the walls fixed (invalid when
   // never so seen): the prior along a direction the links leave open (global_map.cpp).
   std::map<int64_t, SeenWall> seen_fixed;
+  // Whether a member's sighting (id, reference end, iteration) shows the wall's end, judged from
+  // its sightings before the group was made (global_map.cpp): those do not change, and judging
+  // them again at every build cost more than the rest of an iteration.
+  std::map<std::tuple<int64_t, int, int64_t>, bool> shows_end;
   bool dirty = true;
   int loop_evidence = 0;  // GroupLoopEvidence when last placed (pose_graph.hpp)
 
