@@ -297,6 +297,33 @@ TEST(GlobalMap, AnEndSightingFarFromWhereFixedPosesSawThatEndDoesNotSetThePrior)
   EXPECT_NEAR(state.global.at(3).point.x(), 3.0, 1e-9);
 }
 
+TEST(GlobalMap, ABasisEndThatMovedJustBeforeTheGroupWasMadeDoesNotSetThePrior) {
+  // Driving along x at 0.1 m an iteration, the walls fixing the pose. Group 1, made at
+  // iteration 6, knows the far end (x = 3) of its basis, the hallway's left side, and the end
+  // wall x = 4 by its orientation only: its position is its prior's. Seen far off at a grazing
+  // angle, that end is the last sample on the wall: uncut at x = 3 from iteration 4, then
+  // 0.15 m short from iteration 5 (it moved, §II.C: a wall end stands still) and 0.12 m short
+  // when the group was made; from nearer, iterations 7 to 9 see it at x = 3. The sighting when
+  // the group was made must not put the group 0.12 m short (a door jamb beside a hallway wall's
+  // end was mapped 0.14 m along the hallway).
+  const auto seen = SeenAlongXCut;
+  MapperState state = DrivingAlongX(9, 9);
+  RltPlane left(1, seen({-1, 1}, {3, 1}, 0.4, 4, false), 0.05, 1000);
+  left.Add(seen({-1, 1}, {2.85, 1}, 0.5, 5, false));
+  left.Add(seen({-1, 1}, {2.88, 1}, 0.6, 6, false));
+  for (int64_t k = 7; k <= 9; ++k) {
+    left.Add(seen({-1, 1}, {3, 1}, 0.1 * static_cast<double>(k), k, false));
+  }
+  const Observation end = seen({4, -1}, {4, 1}, 0.9, 9, false);
+  state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
+  const Placement left_end =
+      Placed(left.Latest().Alpha(), {3, 1}, FarEnd(left.Latest()), Known::kPoint);
+  state.planes.emplace(1, std::move(left));
+  PlaceByPriorOnly(&state, end, 6, {{1, left_end}});
+  ASSERT_TRUE(state.global.count(1));
+  EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-9);
+}
+
 TEST(GlobalMap, AGroupWhoseEndsTheViewCutWhenItWasMadeIsPlacedFromTheEndsSeenSince) {
   // Driving along x at 0.1 m an iteration, the walls fixing the pose. Group 1, made at
   // iteration 6, knows the far ends (x = 3) of the hallway's two sides and the end wall x = 4 by

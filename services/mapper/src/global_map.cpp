@@ -153,8 +153,9 @@ bool MemberShowsEnd(MapperState& state, size_t g, int64_t id, const SeenWall& se
 // build (a new group's side walls moved 2.5 cm across the room from one iteration to the next).
 // Else the basis as seen when the group was made, unless the view cut its reference end then
 // (a door frame in front hid it: the edge seen was not the wall end the relative map starts
-// from, 0.7 m along the wall on the noisy office); then the latest member whose reference end
-// was in view, at about where the sightings of it from fixed poses put it.
+// from, 0.7 m along the wall on the noisy office) or the fixed poses just before did not see
+// that end still; then the latest member whose reference end was in view, at about where the
+// sightings of it from fixed poses put it.
 Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options) {
   const RelativeMap& map = state.groups[g].relative;
   int64_t latest = -1;
@@ -189,7 +190,13 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   }
   const SeenWall basis_seen = SeenWhenMade(state, g, basis, options);
   prior = PlacementFromSighting(basis_seen, basis_rel);
-  if (basis_rel.ref < 0 || !basis_seen.cut[basis_rel.ref]) return prior;
+  // Nor where the latest sighting from a fixed pose before did not show that end still (cut, or
+  // moved since the one before; §II.C: a wall end stands still): an end seen far off at a
+  // grazing angle is the last sample on the wall, which creeps along with the sensor and jumps
+  // back as the next sample lands (a hallway wall's end beside a door, seen 4 m away, put a group
+  // and the door jamb it placed 0.12 m along the wall).
+  const bool end_moved = basis_rel.ref >= 0 && basis_fixed.valid && basis_fixed.cut[basis_rel.ref];
+  if (basis_rel.ref < 0 || (!basis_seen.cut[basis_rel.ref] && !end_moved)) return prior;
   // The latest such sighting: the pose it was made from is the nearest to the group's.
   for (const auto& [id, rel] : map.members) {
     if (id == basis || rel.known != Known::kPoint) continue;
