@@ -57,6 +57,84 @@ SeenWall SeenWhenMade(MapperState& state, size_t g, int64_t id, const MapperOpti
   return seen;
 }
 
+// m: a sighting's middle this far from the line the others agree on is not the same wall (a
+// mis-association, or a pose the walls fixed wrongly); the pose error from fixed poses is a few
+// centimetres.
+constexpr double kLineAgreement = 0.1;
+// m: the error of a fixed pose across a wall, added to each sighting's own offset error so that
+// the best-fitting sighting does not take all the weight.
+constexpr double kPoseNoise = 0.01;
+
+// Member `id` of group `g`, known by its orientation only, as its sightings from poses the walls
+// fixed agree on its line, kept in the group. One sighting does not place it (§II.A end): a wall
+// seen edge-on through a door, over 0.1 to 0.5 m, is fitted up to 6 degrees off, and its first
+// sighting, 1.6 degrees off, left it 1.4 degrees off on the map for good. Its orientation is the
+// mean of theirs weighted by how well each fit fixes it (OrientationWeight, as localisation
+// weighs them), its line through the mean of their middles weighted by how well each fixes its
+// offset. Also the sightings since the group was made: a member that joined later has none
+// before (placing a wall's line from a pose is §II.A's "transformed using current position").
+// Falls back to the sighting when the group was made when fewer than two agree.
+SeenWall LineWhenMade(MapperState& state, size_t g, int64_t id, const MapperOptions& options) {
+  Group& group = state.groups[g];
+  const RltPlane& plane = *state.Plane(id);
+  const int64_t upto = plane.Latest().iteration;
+  auto kept = group.seen_line.find(id);
+  if (kept != group.seen_line.end() && kept->second.first >= upto) return kept->second.second;
+  const SeenWall made = SeenWhenMade(state, g, id, options);
+  if (g == 0) return made;  // the first group's walls are as first seen
+  const auto& all = plane.Observations();
+  struct Sight {
+    SeenWall seen;
+    double w_angle, w_offset;
+  };
+  std::vector<Sight> sights;
+  for (size_t i = all.size(); i > 0; --i) {
+    const Observation& obs = all[i - 1];
+    if (state.fixed_poses.count(obs.iteration) == 0) continue;
+    const auto pose = state.poses.find(obs.iteration);
+    if (pose == state.poses.end()) continue;
+    const double offset_var = obs.support > 0 ? obs.rms * obs.rms / obs.support : 0.0;
+    sights.push_back({SeenFrom(obs, pose->second), OrientationWeight(obs),
+                      1.0 / (offset_var + kPoseNoise * kPoseNoise)});
+  }
+  const auto fuse = [&](const std::vector<bool>& use, SeenWall* out) {
+    double s = 0.0, c = 0.0, wsum = 0.0;
+    Vector2d mid = Vector2d::Zero();
+    int n = 0;
+    const SeenWall* latest = nullptr;
+    for (size_t k = 0; k < sights.size(); ++k) {
+      if (!use[k]) continue;
+      if (latest == nullptr) latest = &sights[k].seen;
+      const double d = geometry::WrapAngle(sights[k].seen.alpha - latest->alpha);
+      s += sights[k].w_angle * std::sin(d), c += sights[k].w_angle * std::cos(d);
+      mid += sights[k].w_offset * 0.5 * (sights[k].seen.edge[0] + sights[k].seen.edge[1]);
+      wsum += sights[k].w_offset;
+      ++n;
+    }
+    if (n < 2) return false;
+    *out = *latest;  // its extent along the wall
+    out->alpha = geometry::WrapAngle(latest->alpha + std::atan2(s, c));
+    const Vector2d p = mid / wsum, t = DirectionOf(out->alpha);
+    for (int e = 0; e < 2; ++e) out->edge[e] = p + t * t.dot(out->edge[e] - p);
+    out->foot = p + t * t.dot(out->foot - p);
+    return true;
+  };
+  SeenWall fused = made;
+  std::vector<bool> use(sights.size(), true);
+  if (fuse(use, &fused)) {
+    const Vector2d n = NormalOf(fused.alpha);
+    for (size_t k = 0; k < sights.size(); ++k) {
+      const Vector2d mid = 0.5 * (sights[k].seen.edge[0] + sights[k].seen.edge[1]);
+      use[k] = std::abs(n.dot(mid - fused.edge[0])) <= kLineAgreement;
+    }
+    if (!fuse(use, &fused)) fused = made;
+  }
+  // Kept once the group's iteration is localised, as SeenWhenMade: the poses before it may not
+  // all be known yet.
+  if (state.poses.count(group.created) != 0) group.seen_line[id] = {upto, fused};
+  return fused;
+}
+
 // Member `id` of group `g` as last seen before the group was made from a pose the walls fixed
 // in every direction, kept in the group (invalid when there is none). Poses from the group's
 // first iteration on were solved against its own placement, and one the motion model carried
@@ -366,7 +444,7 @@ void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
   Group& group = state.groups[g];
   for (const auto& [id, rel] : group.relative.members) {
     // Kept now, while the observation is there, for when this group places it.
-    if (rel.known == Known::kAngle) SeenWhenMade(state, g, id, options);
+    if (rel.known == Known::kAngle) LineWhenMade(state, g, id, options);
     auto it = state.global.find(id);
     // Hard chaining: the first group to place a plane wins, unless a later one knows more.
     // A later group that found the plane's other edge static adds that end to the map.
@@ -386,7 +464,7 @@ void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
     if (rel.known == Known::kAngle) {
       // No comparison pins it yet: its line as seen when the group was made, from the pose
       // then (§II.A end: "transformed using current position").
-      world = PlacementOf(SeenWhenMade(state, g, id, options), -1);
+      world = PlacementOf(LineWhenMade(state, g, id, options), -1);
     }
     state.global[id] = world;
     state.placed_by[id] = static_cast<int64_t>(g);

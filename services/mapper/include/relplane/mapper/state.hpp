@@ -79,6 +79,10 @@ struct Group {
   // Members as last seen before the group was made from a pose the walls fixed (invalid when
   // never so seen): the prior along a direction the links leave open (global_map.cpp).
   std::map<int64_t, SeenWall> seen_fixed;
+  // Members placed by orientation only, their line as their sightings from poses the walls fixed
+  // agree on it (global_map.cpp), with the plane's latest iteration then: kept for the same
+  // reason as `seen`, and worked out again only when the plane was seen since.
+  std::map<int64_t, std::pair<int64_t, SeenWall>> seen_line;
   // Whether a member's sighting (id, reference end, iteration) shows the wall's end, judged from
   // its sightings before the group was made (global_map.cpp): those do not change, and judging
   // them again at every build cost more than the rest of an iteration.
