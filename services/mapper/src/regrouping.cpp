@@ -41,6 +41,7 @@ void Leave(MapperState& state, Group& group, int64_t id) {
   group.relative.members.erase(id);
   group.seen.erase(id);
   group.seen_fixed.erase(id);
+  group.seen_line.erase(id);
   for (auto it = group.shows_end.begin(); it != group.shows_end.end();) {
     it = std::get<0>(it->first) == id ? group.shows_end.erase(it) : std::next(it);
   }
