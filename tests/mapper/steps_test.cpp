@@ -555,6 +555,75 @@ TEST(Mapper, PlaneLeavingAndReenteringIsTheSameRltplane) {
   EXPECT_EQ(mapper.State().planes.size(), planes_after_first);
 }
 
+// §II.C: an edge cut by the view is no wall end, and the view's range is learnt from the edges
+// as they come. Driving along a long hallway with a 6 m sensor, the side walls' far ends creep
+// along with the sensor at the range; until the range limit stands out they pass for wall ends
+// (the sightings before agree with them), so the sightings stored then are judged again once it
+// does (an unseen office: such an end put a wall 1.3 m short of its corner, and the wall was
+// mapped a second time).
+TEST(Mapper, SightingsStoredBeforeTheRangeWasLearntHaveTheirRangeEndsCut) {
+  const testing::World hallway{
+      "long_hallway", {{Vector2d(-1, 1), Vector2d(40, 1)}, {Vector2d(-1, -1), Vector2d(40, -1)}}};
+  testing::Frustum view;
+  view.range = 6.0;
+  testing::IdealSegmenter segmenter(hallway, view);
+  Mapper mapper;
+  for (int64_t k = 0; k < 60; ++k) mapper.Process(k, segmenter.Planes({0.03 * k, 0.0, 0.0}));
+  ASSERT_EQ(mapper.State().planes.size(), 2u);
+  int early = 0;
+  for (const auto& [id, plane] : mapper.State().planes) {
+    for (const Observation& obs : plane.Observations()) {
+      for (int e = 0; e < 2; ++e) {
+        if (obs.edge[e].norm() < 5.5) continue;  // the near end, where the field of view cuts
+        EXPECT_TRUE(obs.cut[e]) << "wall " << id << ", iteration " << obs.iteration;
+        early += obs.iteration < 5 ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(early, 0);  // the first sightings are still stored
+}
+
+// The sightings kept from those observations carry the cut too, and the groups holding the wall
+// are built again: a group's prior takes its members' ends from them (global_map.cpp).
+TEST(MarkViewCuts, SightingsKeptByGroupsAreCutWithTheirObservations) {
+  MapperState state;
+  // A wall 1 m to the side, from its end 2 m ahead to the 6 m range, seen from a still sensor.
+  See(&state, 0, 1, {2.0, 1.0}, {std::sqrt(35.0), 1.0});
+  See(&state, 0, 2, {2.0, 1.0}, {std::sqrt(35.0), 1.0});
+  state.poses[1] = state.poses[2] = {0.0, 0.0, 0.0};
+  const Observation& first = state.planes.at(0).Observations().front();
+  const int far = first.edge[0].norm() > first.edge[1].norm() ? 0 : 1;
+  Group group;
+  group.members = {0};
+  group.seen[0] = SeenFrom(first, state.poses[1]);
+  group.seen_fixed[0] = SeenFrom(state.planes.at(0).Latest(), state.poses[2]);
+  group.shows_end[{0, far, 2}] = true;
+  group.dirty = false;
+  state.groups.push_back(group);
+  // The view cuts edges at 45 degrees at any distance; only then does the range pile up.
+  LearnedFrustum unlearnt, learnt;
+  for (int k = 0; k < 64; ++k) {
+    const double r = 0.5 + 5.0 * k / 64.0, b = (k % 2 == 0 ? 1 : -1) * M_PI / 4.0;
+    unlearnt.Observe(r * Vector2d(std::cos(b), std::sin(b)));
+    learnt.Observe(r * Vector2d(std::cos(b), std::sin(b)));
+    learnt.Observe(6.0 * Vector2d(std::cos(0.1 * b), std::sin(0.1 * b)));
+  }
+  ASSERT_TRUE(std::isinf(unlearnt.RangeLimit()));
+  ASSERT_NEAR(learnt.RangeLimit(), 6.0, 0.1);
+  EXPECT_EQ(MarkViewCuts(unlearnt, state), 0);
+  EXPECT_EQ(MarkViewCuts(learnt, state), 2);
+  for (const Observation& obs : state.planes.at(0).Observations()) {
+    EXPECT_TRUE(obs.cut[far]);
+    EXPECT_FALSE(obs.cut[1 - far]);
+  }
+  const Group& g = state.groups.front();
+  EXPECT_TRUE(g.seen.at(0).cut[far]);
+  EXPECT_TRUE(g.seen_fixed.at(0).cut[far]);
+  EXPECT_FALSE(g.seen_fixed.at(0).cut[1 - far]);
+  EXPECT_TRUE(g.shows_end.empty());
+  EXPECT_TRUE(g.dirty);
+}
+
 TEST(Mapper, RepeatedOrOldIterationsAreIgnored) {
   Mapper mapper;
   mapper.Process(5, {Wall({3, -1}, {3, 1})});

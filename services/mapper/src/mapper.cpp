@@ -29,6 +29,42 @@ bool Turning(const geometry::Pose2& from, const geometry::Pose2& to, int64_t ite
 
 }  // namespace
 
+int MarkViewCuts(const LearnedFrustum& frustum, MapperState& state) {
+  int marked = 0;
+  for (auto& [id, plane] : state.planes) {
+    const auto& all = plane.Observations();
+    std::set<int64_t> changed;  // iterations with a newly cut edge
+    for (size_t i = 0; i < all.size(); ++i) {
+      for (int e = 0; e < 2; ++e) {
+        if (all[i].cut[e] || !frustum.Clipped(all[i].edge[e], all[i].edge[1 - e])) continue;
+        plane.MarkCut(i, e);
+        changed.insert(all[i].iteration);
+        ++marked;
+      }
+    }
+    if (changed.empty()) continue;
+    // A sighting kept from one of those observations carries its cut flags.
+    auto revise = [&](SeenWall& seen) {
+      const Observation* obs = seen.valid ? plane.At(seen.iteration) : nullptr;
+      if (obs == nullptr || changed.count(seen.iteration) == 0) return;
+      for (int e = 0; e < 2; ++e) seen.cut[e] = seen.cut[e] || obs->cut[e];
+    };
+    revise(plane.first_seen);
+    for (Group& group : state.groups) {
+      if (std::find(group.members.begin(), group.members.end(), id) == group.members.end()) {
+        continue;
+      }
+      if (auto it = group.seen.find(id); it != group.seen.end()) revise(it->second);
+      if (auto it = group.seen_fixed.find(id); it != group.seen_fixed.end()) revise(it->second);
+      for (auto it = group.shows_end.begin(); it != group.shows_end.end();) {
+        it = std::get<0>(it->first) == id ? group.shows_end.erase(it) : std::next(it);
+      }
+      group.dirty = true;
+    }
+  }
+  return marked;
+}
+
 Mapper::Mapper(MapperOptions options) : options_(std::move(options)) {
   pose_ = {options_.start_pose.x, options_.start_pose.y, options_.start_pose.yaw};
 }
@@ -53,7 +89,14 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   }
   // §II.A: one plane per surface and iteration, as an rltplane stores them.
   DropRepeatedSightings(&observations, options_.registration);
-  // Edges cut by the view are never static edges (§II.C).
+  // Edges cut by the view are never static edges (§II.C), nor were they before the view's
+  // range was learnt: a wall's far end at the range creeps along with the sensor, so the
+  // sightings before agree with it and it passed for the wall's end (an unseen office: a wall
+  // seen through a door was mapped 1.3 m short of its corner and again as a second plane).
+  if (frustum_.RangeLimit() < judged_range_limit_) {
+    judged_range_limit_ = frustum_.RangeLimit();
+    MarkViewCuts(frustum_, state_);
+  }
   MarkOccludedEdges(&observations);
   for (Observation& obs : observations) {
     for (int e = 0; e < 2; ++e) {

@@ -3,6 +3,7 @@
 // planes of that iteration; reads as register -> group -> compare -> build maps -> localise.
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "relplane/mapper/localisation.hpp"
@@ -35,6 +36,13 @@ struct MapSnapshot {
   std::vector<MappedGroup> groups;
 };
 
+// §II.C: an edge cut by the view is never a static edge, and the view is learnt as the sensor
+// reports (LearnedFrustum). Marks the stored edges `frustum` now finds cut that were judged
+// uncut before it knew its range limit, with the sightings kept from them (a plane's first,
+// a group's when made and from fixed poses), and has the groups holding them built again.
+// Returns how many edges it marked.
+int MarkViewCuts(const LearnedFrustum& frustum, MapperState& state);
+
 class Mapper {
  public:
   explicit Mapper(MapperOptions options = {});
@@ -65,6 +73,8 @@ class Mapper {
   geometry::Pose2 predicted_;  // pose_ moved on at the learnt velocity to this iteration
   bool motion_known_ = false;  // Predict's `known` for this iteration
   LearnedFrustum frustum_;
+  // The frustum's range limit the stored edges were last judged against (MarkViewCuts).
+  double judged_range_limit_ = std::numeric_limits<double>::infinity();
   int64_t last_iteration_ = -1;
   int64_t previous_iteration_ = -1;  // the iteration before last_iteration_
 };

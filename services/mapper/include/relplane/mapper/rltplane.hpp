@@ -29,6 +29,9 @@ class RltPlane {
   size_t LowerBound(int64_t iteration) const;
   // The observation at `iteration`, or nullptr.
   const Observation* At(int64_t iteration) const;
+  // Marks edge `e` of the stored observation at `index` as cut by the view: the view is learnt
+  // as it is used, and an edge judged before the range limit was known is judged again.
+  void MarkCut(size_t index, int e) { observations_.at(index).cut[e] = true; }
 
   // §II.C: "the interval must be split up if a plane changes state from growing to shrinking".
   // The phase of an iteration: phases change where the visible length turns from growing to
