@@ -97,6 +97,23 @@ void ExpectSidesPlacedAtTheirEnds(MapperState* state, RltPlane left, RltPlane ri
   EXPECT_NEAR(state->global.at(2).point.x(), 3.0, 1e-9);
 }
 
+// The same with the hallway's sides first seen at iteration `first`, from x = 0.1 first, their
+// far ends at x = `first_end` (where the view cut them when `cut`), then from x = 0.1 k at
+// iterations k = `from` to `to` (when the end wall is seen too) with their ends at x = 3.
+void ExpectSidesSeenSincePlacedAtTheirEnds(MapperState* state, int64_t first, double first_end,
+                                           bool cut, int64_t from, int64_t to, int64_t created) {
+  const auto seen = SeenAlongXCut;
+  const auto at = [](int64_t k) { return 0.1 * static_cast<double>(k); };
+  RltPlane left(1, seen({-1, 1}, {first_end, 1}, at(first), first, cut), 0.05, 1000);
+  RltPlane right(2, seen({-1, -1}, {first_end, -1}, at(first), first, cut), 0.05, 1000);
+  for (int64_t k = from; k <= to; ++k) {
+    left.Add(seen({-1, 1}, {3, 1}, at(k), k, false));
+    right.Add(seen({-1, -1}, {3, -1}, at(k), k, false));
+  }
+  const Observation end = seen({4, -1}, {4, 1}, at(to), to, false);
+  ExpectSidesPlacedAtTheirEnds(state, std::move(left), std::move(right), end, created);
+}
+
 TEST(GlobalMap, AGroupRePlacedKeepsTheLinkItTookOverFromAnEarlierGroup) {
   // Seen from the start pose: wall A across the view (x = 2) and wall B along its left side
   // (y = 1), meeting at the corner (2, 1). Group 0 mapped A's line with the map's heading turned
@@ -332,16 +349,25 @@ TEST(GlobalMap, AGroupWhoseEndsTheViewCutWhenItWasMadeIsPlacedFromTheEndsSeenSin
   // ends. A sighting whose end the view cut says nothing along the wall: the prior must not put
   // the group 1.5 m short (a side wall first seen where a 6 m range cut it put a group and
   // every pose after it 1.56 m off).
-  const auto seen = SeenAlongXCut;
   MapperState state = DrivingAlongX(12, 12);
-  RltPlane left(1, seen({-1, 1}, {1.5, 1}, 0.7, 7, true), 0.05, 1000);
-  RltPlane right(2, seen({-1, -1}, {1.5, -1}, 0.7, 7, true), 0.05, 1000);
-  for (int64_t k = 10; k <= 12; ++k) {
-    left.Add(seen({-1, 1}, {3, 1}, 0.1 * static_cast<double>(k), k, false));
-    right.Add(seen({-1, -1}, {3, -1}, 0.1 * static_cast<double>(k), k, false));
+  ExpectSidesSeenSincePlacedAtTheirEnds(&state, 7, 1.5, true, 10, 12, 6);
+}
+
+TEST(GlobalMap, AGroupMadeWhileTheMotionModelCarriedThePoseIsPlacedFromTheEndsSeenSince) {
+  // Driving along x at 0.1 m an iteration. Group 1, made at iteration 6, knows the far ends
+  // (x = 3) of the hallway's two sides and the end wall x = 4 by its orientation only: its
+  // position is its prior's. The sides were first seen at iteration 4, their ends in view, while
+  // the motion model held the pose at x = 0.3 (§II.E: it does not solve the position) as the
+  // sensor went on to 0.6; from iteration 7 on the walls fix the pose and see the ends at x = 3.
+  // The sightings when the group was made put the ends 0.3 m short: the prior must come from the
+  // fixed poses (turning in place at a corner, a door jamb seen then put the group after it, and
+  // the hallway, 4.6 cm along).
+  MapperState state = DrivingAlongX(9, 9);
+  for (int64_t k = 4; k <= 6; ++k) {
+    state.poses[k] = {0.3, 0.0, 0.0};
+    state.fixed_poses.erase(k);
   }
-  const Observation end = seen({4, -1}, {4, 1}, 1.2, 12, false);
-  ExpectSidesPlacedAtTheirEnds(&state, std::move(left), std::move(right), end, 6);
+  ExpectSidesSeenSincePlacedAtTheirEnds(&state, 4, 3.0, false, 5, 9, 6);
 }
 
 TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {

@@ -229,11 +229,12 @@ bool MemberShowsEnd(MapperState& state, size_t g, int64_t id, const SeenWall& se
 // The position is the mean over those ends (the heading the latest one's): one end seen metres
 // away is centimetres off, and which end it was changed with the basis chosen afresh at every
 // build (a new group's side walls moved 2.5 cm across the room from one iteration to the next).
-// Else the basis as seen when the group was made, unless the view cut its reference end then
-// (a door frame in front hid it: the edge seen was not the wall end the relative map starts
-// from, 0.7 m along the wall on the noisy office) or the fixed poses just before did not see
-// that end still; then the latest member whose reference end was in view, at about where the
-// sightings of it from fixed poses put it.
+// Else the basis as seen when the group was made, from a pose the walls fixed, unless the view
+// cut its reference end then (a door frame in front hid it: the edge seen was not the wall end
+// the relative map starts from, 0.7 m along the wall on the noisy office) or the fixed poses
+// just before did not see that end still; then the latest member whose reference end was in
+// view so, at about where the sightings of it from fixed poses put it; then the basis's end as
+// the fixed poses have seen it since.
 Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options) {
   const RelativeMap& map = state.groups[g].relative;
   int64_t latest = -1;
@@ -274,12 +275,23 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   // back as the next sample lands (a hallway wall's end beside a door, seen 4 m away, put a group
   // and the door jamb it placed 0.12 m along the wall).
   const bool end_moved = basis_rel.ref >= 0 && basis_fixed.valid && basis_fixed.cut[basis_rel.ref];
-  if (basis_rel.ref < 0 || (!basis_seen.cut[basis_rel.ref] && !end_moved)) return prior;
+  // Nor a sighting from a pose the motion model carried (§II.E: while one partial plane is seen,
+  // as when turning in place, the position is not solved): a group made then was placed by the
+  // ends it saw, 2 to 5 cm off, and its prior flipped between them and the fixed poses' as its
+  // basis changed from one build to the next. A door jamb at a corner went 4.6 cm along the
+  // hallway, and with it the hallway's next leg across (noisy doors' worst wall 0.056 m).
+  const auto from_fixed = [&](const SeenWall& seen) {
+    return state.fixed_poses.count(seen.iteration) != 0;
+  };
+  if (basis_rel.ref < 0 ||
+      (!basis_seen.cut[basis_rel.ref] && !end_moved && from_fixed(basis_seen))) {
+    return prior;
+  }
   // The latest such sighting: the pose it was made from is the nearest to the group's.
   for (const auto& [id, rel] : map.members) {
     if (id == basis || rel.known != Known::kPoint) continue;
     const SeenWall seen = SeenWhenMade(state, g, id, options);
-    if (seen.iteration <= latest) continue;
+    if (seen.iteration <= latest || !from_fixed(seen)) continue;
     if (!MemberShowsEnd(state, g, id, seen, rel.ref)) continue;
     latest = seen.iteration;
     prior = PlacementFromSighting(seen, rel);
