@@ -345,6 +345,44 @@ TEST(Registration, ALongPieceFittedSomeDegreesOffIsJudgedAtItsMiddle) {
   for (const Observation& obs : seen) EXPECT_NE(obs.support, 300);
 }
 
+TEST(Registration, AStripSplitOffAtTheViewsEdgeIsPartOfTheWall) {
+  // Driving along a hallway (walls y = +-1) with a 90 degree view, which cuts both walls at
+  // x = 1. On the right wall the segmenter splits off its nearest 0.1 m (the image's last
+  // columns at a glancing angle) as a strip fitted 8 degrees off (as on hallway_out_and_back at
+  // sigma = 1 cm). The strip must not become a second rltplane, mapped as the wall's duplicate.
+  const double off = 8.0 * M_PI / 180.0;
+  const Vector2d split{1.1, -1.0};
+  const Vector2d strip_end = split - 0.1 * Vector2d(std::cos(off), -std::sin(off));
+  Mapper mapper;
+  for (int64_t k = 0; k < 60; ++k) {
+    // The far ends come 3 cm closer every iteration; the view's cut stays at x = 1.
+    const double far = 6.0 - 0.03 * static_cast<double>(k);
+    mapper.Process(k, {Fitted({1, 1}, {far, 1}, 6000), Fitted(split, {far, -1}, 6000),
+                       Fitted(strip_end, split, 300)});
+  }
+  EXPECT_EQ(mapper.State().planes.size(), 2u);
+}
+
+TEST(Registration, APiecePastAWallsEndIsDroppedOnlyWhereTheViewCutsIt) {
+  RegistrationOptions options;
+  auto at_view_edge = [](const Vector2d& p) { return std::abs(p.y()) > p.x() - 1e-6; };
+  std::vector<Observation> seen;
+  for (const PlaneInput& in : {
+           Fitted({1.1, -1}, {5, -1}, 6000),           // the wall, cut by the view at x = 1
+           Fitted({1.0, -1.012}, {1.1, -1.0}, 300),    // its strip at the view's edge: dropped
+           Fitted({3, 1}, {5, 1}, 6000),               // the wall across, from a jamb at x = 3
+           Fitted({2.6, 1.02}, {3.0, 1.0}, 300),       // a piece past the jamb's corner: kept
+       }) {
+    seen.push_back(*MakeObservation(in, 0, 0.3));
+  }
+  DropRepeatedSightings(&seen, options, at_view_edge);
+  ASSERT_EQ(seen.size(), 3u);
+  // The wall now reaches as far as the strip did, on its own line.
+  EXPECT_NEAR(std::min(seen[0].edge[0].x(), seen[0].edge[1].x()), 1.0, 1e-9);
+  EXPECT_NEAR(seen[0].edge[0].y(), -1.0, 1e-9);
+  EXPECT_EQ(seen[2].support, 300);
+}
+
 TEST(Grouping, CovisiblePlanesShareAGroupAndANewPlaneLinksToThePrevious) {
   MapperOptions options;
   MapperState state;

@@ -88,7 +88,8 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
     observations.push_back(std::move(*obs));
   }
   // §II.A: one plane per surface and iteration, as an rltplane stores them.
-  DropRepeatedSightings(&observations, options_.registration);
+  DropRepeatedSightings(&observations, options_.registration,
+                        [this](const Eigen::Vector2d& edge) { return frustum_.Clipped(edge); });
   // Edges cut by the view are never static edges (§II.C), nor were they before the view's
   // range was learnt: a wall's far end at the range creeps along with the sensor, so the
   // sightings before agree with it and it passed for the wall's end (an unseen office: a wall

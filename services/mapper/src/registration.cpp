@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <tuple>
 
 namespace relplane::mapper {
@@ -25,9 +26,14 @@ constexpr double kSameSurface = 0.05;
 
 // Does `piece` lie along `wall` (both seen in the same iteration), the latter fitted to more
 // points? Of two reports of one surface the one with the wider support is the better fit (the
-// jamb face reported twice, 0.1 m long each, 3 and 12 degrees off).
+// jamb face reported twice, 0.1 m long each, 3 and 12 degrees off). The piece may also go on
+// past the wall's end where the view cuts it: the segmenter splits the nearest columns of a
+// wall seen at a glancing angle off as a strip a few centimetres long, fitted 3-12 degrees off
+// (hallway_out_and_back and loop_other_sensor at σ = 1 cm, mapped as the wall's duplicate).
+// Past a real end (a jamb's corner) the piece is kept: merged, its fit would turn the wall.
 bool LiesAlong(const Observation& piece, const Observation& wall,
-               const RegistrationOptions& options) {
+               const RegistrationOptions& options,
+               const std::function<bool(const Eigen::Vector2d&)>& at_view_edge) {
   if (piece.support >= wall.support) return false;
   const double angle = std::acos(std::clamp(piece.normal.dot(wall.normal), -1.0, 1.0));
   if (angle > options.max_angle) return false;
@@ -43,22 +49,40 @@ bool LiesAlong(const Observation& piece, const Observation& wall,
   // walls by 0.23 degrees, §II.A).
   const Eigen::Vector2d middle = 0.5 * (piece.edge[0] + piece.edge[1]);
   if (std::abs(wall.normal.dot(middle) + wall.d) > kSameSurface) return false;
+  bool touches = false;
   for (int e = 0; e < 2; ++e) {
     const double s = t.dot(piece.edge[e]);
-    if (s < w0 - kSameSurface || s > w1 + kSameSurface) return false;
+    if (s >= w0 - kSameSurface && s <= w1 + kSameSurface) {
+      touches = true;
+    } else if (!at_view_edge || !at_view_edge(piece.edge[e])) {
+      return false;
+    }
   }
-  return Overlap(wall.z_min, wall.z_max, piece.z_min, piece.z_max) >= options.min_overlap;
+  return touches && Overlap(wall.z_min, wall.z_max, piece.z_min, piece.z_max) >= options.min_overlap;
+}
+
+// Extends `wall` along its line over the part of `piece` past its ends, so the sighting reaches
+// as far as the surface was seen (the view then marks that end cut, §II.C).
+void Absorb(const Observation& piece, Observation* wall) {
+  const Eigen::Vector2d t = wall->Direction();
+  for (const Eigen::Vector2d& p : piece.edge) {
+    const Eigen::Vector2d on_line = p - (wall->normal.dot(p) + wall->d) * wall->normal;
+    if (t.dot(on_line) < t.dot(wall->edge[0])) wall->edge[0] = on_line;
+    if (t.dot(on_line) > t.dot(wall->edge[1])) wall->edge[1] = on_line;
+  }
 }
 
 }  // namespace
 
 void DropRepeatedSightings(std::vector<Observation>* observations,
-                           const RegistrationOptions& options) {
+                           const RegistrationOptions& options,
+                           const std::function<bool(const Eigen::Vector2d&)>& at_view_edge) {
   std::vector<Observation>& obs = *observations;
   std::vector<bool> drop(obs.size(), false);
   for (size_t k = 0; k < obs.size(); ++k) {
     for (size_t j = 0; j < obs.size() && !drop[k]; ++j) {
-      drop[k] = j != k && !drop[j] && LiesAlong(obs[k], obs[j], options);
+      drop[k] = j != k && !drop[j] && LiesAlong(obs[k], obs[j], options, at_view_edge);
+      if (drop[k]) Absorb(obs[k], &obs[j]);
     }
   }
   size_t kept = 0;
