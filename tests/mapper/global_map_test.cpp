@@ -370,6 +370,45 @@ TEST(GlobalMap, AGroupMadeWhileTheMotionModelCarriedThePoseIsPlacedFromTheEndsSe
   ExpectSidesSeenSincePlacedAtTheirEnds(&state, 4, 3.0, false, 5, 9, 6);
 }
 
+TEST(GlobalMap, AcrossItsBasisAGroupsPriorIsTheBasissLineNotAnEndSeenAtAGlancingAngle) {
+  // Driving along x at 0.1 m an iteration, the walls fixing the pose. Group 0 mapped the
+  // hallway's right side (y = -1). Group 1, made at iteration 6, has as basis the end wall
+  // x = 4, seen square on and known by its line, and knows the far end (x = 3, a recess) of the
+  // hallway's left side (y = 1); the right side is its one link, so its position along x is its
+  // prior's. Seen 2.5 m along the wall 1 m beside the sensor, the left side's end is the last
+  // ray that met it, 4 cm short of the end (x = 2.96) in both sightings. Across the basis the
+  // prior must come from the end wall's line, not put the group 4 cm short (§II.C: an end is
+  // fixed to a ray's spacing, a line by all its points; on loop_other_sensor a pilaster's group
+  // was put 4 to 8 cm along the hallway).
+  const auto seen = SeenAlongX;
+  MapperState state = DrivingAlongX(5, 5);
+  RltPlane end(0, seen({4, -1}, {4, 1}, 0.4, 4), 0.05, 1000);
+  end.Add(seen({4, -1}, {4, 1}, 0.5, 5));
+  RltPlane left(1, seen({-1, 1}, {2.96, 1}, 0.4, 4), 0.05, 1000);
+  left.Add(seen({-1, 1}, {2.96, 1}, 0.5, 5));
+  RltPlane right(2, seen({-1, -1}, {3.5, -1}, 0.4, 4), 0.05, 1000);
+  right.Add(seen({-1, -1}, {3.5, -1}, 0.5, 5));
+  const Placement end_line = Placed(end.Latest().Alpha(), {4, 0}, -1, Known::kLine);
+  const Placement left_end =
+      Placed(left.Latest().Alpha(), {3, 1}, FarEnd(left.Latest()), Known::kPoint);
+  const Placement right_line = Placed(right.Latest().Alpha(), {0, -1}, -1, Known::kLine);
+  end.groups = {1};
+  left.groups = {1};
+  right.groups = {0, 1};
+  state.planes.emplace(0, std::move(end));
+  state.planes.emplace(1, std::move(left));
+  state.planes.emplace(2, std::move(right));
+  state.groups = {Built(0, 0, {{2, right_line}}, 2),
+                  Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_line}}, 0)};
+  state.global = {{2, right_line}};
+  state.placed_by = {{2, 0}};
+  BuildGlobalMap(state, 1, MapperOptions{});
+  ASSERT_TRUE(state.global.count(0) && state.global.count(1));
+  const Placement& placed = state.global.at(0);
+  EXPECT_NEAR(std::abs(NormalOf(placed.alpha).dot(placed.point)), 4.0, 1e-6);
+  EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-6);
+}
+
 TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {
   // From the start pose a wall across the view (x = 3) is seen whole, y from 2 to -2, across a
   // door (the lintel joins its pieces); the view cuts both edges but is not learnt yet, so they
