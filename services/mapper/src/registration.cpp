@@ -20,26 +20,30 @@ double Overlap(double a0, double a1, double b0, double b1) {
 constexpr double kEndJump = 0.5;
 constexpr int64_t kEndMemory = 90;  // iterations an uncut end's sighting is compared against
 
-// m: a plane's end lies on another plane's line, or within its extent, to this: a few times the
-// edges' noise at σ = 1 cm, and well below a wall's thickness (a jamb, a recess).
+// m: a plane's end lies on another plane's line to this: a few times the edges' noise at
+// σ = 1 cm, and well below a wall's thickness (a jamb, a recess).
 constexpr double kSameSurface = 0.05;
 
 // Does `piece` lie along `wall` (both seen in the same iteration), the latter fitted to more
 // points? Of two reports of one surface the one with the wider support is the better fit (the
-// jamb face reported twice, 0.1 m long each, 3 and 12 degrees off). The piece may also go on
-// past the wall's end where the view cuts it: the segmenter splits the nearest columns of a
-// wall seen at a glancing angle off as a strip a few centimetres long, fitted 3-12 degrees off
-// (hallway_out_and_back and loop_other_sensor at σ = 1 cm, mapped as the wall's duplicate).
-// Past a real end (a jamb's corner) the piece is kept: merged, its fit would turn the wall.
+// jamb face reported twice, 0.1 m long each, 3 and 12 degrees off). On the wall's line, and
+// either overlapping it along the wall as the bounding box test of §II.A asks of a match, or
+// going on past its end only where the view cuts it:
+// - a recess's 0.4 m side wall was reported as two fits crossing at its middle, 2 and 4
+//   degrees off, the lesser one reaching 0.25 m past the wall's end (points of the corner
+//   beside it); kept, it became a second rltplane, took the wall's later sightings and was
+//   mapped as its duplicate (loop_other_sensor at σ = 1 cm);
+// - the segmenter splits the nearest columns of a wall seen at a glancing angle off as a strip
+//   a few centimetres long, 3-12 degrees off, beside the wall (hallway_out_and_back at
+//   σ = 1 cm, mapped as the wall's duplicate).
+// A collinear wall past a corner or a door does not touch it; a piece only touching it past a
+// real end (a jamb's corner) is kept: merged, its fit turned the wall.
 bool LiesAlong(const Observation& piece, const Observation& wall,
                const RegistrationOptions& options,
                const std::function<bool(const Eigen::Vector2d&)>& at_view_edge) {
   if (piece.support >= wall.support) return false;
   const double angle = std::acos(std::clamp(piece.normal.dot(wall.normal), -1.0, 1.0));
   if (angle > options.max_angle) return false;
-  const Eigen::Vector2d t = wall.Direction();
-  double w0 = t.dot(wall.edge[0]), w1 = t.dot(wall.edge[1]);
-  if (w0 > w1) std::swap(w0, w1);
   // The distance to the wall's line at the piece's middle, not the offsets d: a piece a few
   // degrees off has its d far from the wall's when it lies far from the foot of the sensor's
   // normal. Nor at its ends: a fit is known best at its middle, and its ends are off the line by
@@ -49,6 +53,15 @@ bool LiesAlong(const Observation& piece, const Observation& wall,
   // walls by 0.23 degrees, §II.A).
   const Eigen::Vector2d middle = 0.5 * (piece.edge[0] + piece.edge[1]);
   if (std::abs(wall.normal.dot(middle) + wall.d) > kSameSurface) return false;
+  if (Overlap(wall.z_min, wall.z_max, piece.z_min, piece.z_max) < options.min_overlap) {
+    return false;
+  }
+  const Eigen::Vector2d t = wall.Direction();
+  double w0 = t.dot(wall.edge[0]), w1 = t.dot(wall.edge[1]);
+  double p0 = t.dot(piece.edge[0]), p1 = t.dot(piece.edge[1]);
+  if (w0 > w1) std::swap(w0, w1);
+  if (p0 > p1) std::swap(p0, p1);
+  if (Overlap(w0, w1, p0, p1) >= options.min_overlap) return true;
   bool touches = false;
   for (int e = 0; e < 2; ++e) {
     const double s = t.dot(piece.edge[e]);
@@ -58,14 +71,17 @@ bool LiesAlong(const Observation& piece, const Observation& wall,
       return false;
     }
   }
-  return touches && Overlap(wall.z_min, wall.z_max, piece.z_min, piece.z_max) >= options.min_overlap;
+  return touches;
 }
 
-// Extends `wall` along its line over the part of `piece` past its ends, so the sighting reaches
-// as far as the surface was seen (the view then marks that end cut, §II.C).
-void Absorb(const Observation& piece, Observation* wall) {
+// Extends `wall` along its line over the part of `piece` past its ends where the view cuts the
+// piece, so the sighting reaches as far as the surface was seen (the view then marks that end
+// cut, §II.C). A piece's end past a real end is its fit's, not the wall's.
+void Absorb(const Observation& piece, Observation* wall,
+            const std::function<bool(const Eigen::Vector2d&)>& at_view_edge) {
   const Eigen::Vector2d t = wall->Direction();
   for (const Eigen::Vector2d& p : piece.edge) {
+    if (!at_view_edge || !at_view_edge(p)) continue;
     const Eigen::Vector2d on_line = p - (wall->normal.dot(p) + wall->d) * wall->normal;
     if (t.dot(on_line) < t.dot(wall->edge[0])) wall->edge[0] = on_line;
     if (t.dot(on_line) > t.dot(wall->edge[1])) wall->edge[1] = on_line;
@@ -82,7 +98,7 @@ void DropRepeatedSightings(std::vector<Observation>* observations,
   for (size_t k = 0; k < obs.size(); ++k) {
     for (size_t j = 0; j < obs.size() && !drop[k]; ++j) {
       drop[k] = j != k && !drop[j] && LiesAlong(obs[k], obs[j], options, at_view_edge);
-      if (drop[k]) Absorb(obs[k], &obs[j]);
+      if (drop[k]) Absorb(obs[k], &obs[j], at_view_edge);
     }
   }
   size_t kept = 0;

@@ -19,14 +19,14 @@ double MatchScore(const Observation& latest, const Observation& obs,
                   const RegistrationOptions& options);
 
 // Drops, from one iteration's planes, each one that lies along another plane of the same
-// iteration fitted to more points (normals within the plane-equation test, both ends on the
-// other's line and within its extent along the wall, or past it only where `at_view_edge`
-// says the view cuts it; overlapping it in height): the segmenter has reported a stretch of
-// one surface twice (a piece at a room corner or beside a door jamb, fitted a few degrees off,
-// beside the whole wall), or split off its part nearest the view's edge. Both match the same
-// rltplane (§II.A), which stores one plane per iteration (Fig. 1), so the lesser one became a
-// new rltplane and was mapped as the wall's duplicate. The kept plane is extended over the
-// dropped one's reach.
+// iteration fitted to more points (normals within the plane-equation test, its middle on the
+// other's line, overlapping it along the wall, or touching it and going on past its end only
+// where `at_view_edge` says the view cuts it; overlapping it in height): the segmenter has
+// reported a stretch of one surface twice (a piece at a room corner or beside a door jamb,
+// fitted a few degrees off, beside the whole wall), or split off its part nearest the view's
+// edge. Both match the same rltplane (§II.A), which stores one plane per iteration (Fig. 1), so
+// the lesser one became a new rltplane and was mapped as the wall's duplicate. The kept plane
+// is extended over the dropped one's reach at the view's edge.
 void DropRepeatedSightings(
     std::vector<Observation>* observations, const RegistrationOptions& options,
     const std::function<bool(const Eigen::Vector2d&)>& at_view_edge = nullptr);
