@@ -341,6 +341,34 @@ TEST(GlobalMap, ABasisEndThatMovedJustBeforeTheGroupWasMadeDoesNotSetThePrior) {
   EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-9);
 }
 
+TEST(GlobalMap, AMemberEndThatMovedJustBeforeTheGroupWasMadeDoesNotSetThePrior) {
+  // Driving along x at 0.1 m an iteration, the walls fixing the pose. Group 1, made at
+  // iteration 6, knows the far ends (x = 3) of the hallway's two sides and the end wall x = 4 by
+  // its orientation only: its position is its prior's. The view cut the basis's (left side's)
+  // end up to iteration 6, so the prior falls back to another member's end as seen when the
+  // group was made. The right side's end, far off at a grazing angle, is the last sample on the
+  // wall: uncut at x = 3 from iteration 4, then 0.15 m short from iteration 5 (it moved, §II.C: a
+  // wall end stands still) and 0.12 m short when the group was made. From iteration 7 on both
+  // ends are seen at x = 3. The member's sighting when the group was made must not put the group
+  // 0.12 m short, any more than the basis's would (a door jamb's group, and the hallway after it,
+  // went 0.13 m along the hallway).
+  const auto seen = SeenAlongXCut;
+  const auto at = [](int64_t k) { return 0.1 * static_cast<double>(k); };
+  MapperState state = DrivingAlongX(9, 9);
+  RltPlane left(1, seen({-1, 1}, {3, 1}, at(4), 4, true), 0.05, 1000);
+  RltPlane right(2, seen({-1, -1}, {3, -1}, at(4), 4, false), 0.05, 1000);
+  left.Add(seen({-1, 1}, {3, 1}, at(5), 5, true));
+  right.Add(seen({-1, -1}, {2.85, -1}, at(5), 5, false));
+  left.Add(seen({-1, 1}, {3, 1}, at(6), 6, true));
+  right.Add(seen({-1, -1}, {2.88, -1}, at(6), 6, false));
+  for (int64_t k = 7; k <= 9; ++k) {
+    left.Add(seen({-1, 1}, {3, 1}, at(k), k, false));
+    right.Add(seen({-1, -1}, {3, -1}, at(k), k, false));
+  }
+  const Observation end = seen({4, -1}, {4, 1}, at(9), 9, false);
+  ExpectSidesPlacedAtTheirEnds(&state, std::move(left), std::move(right), end, 6);
+}
+
 TEST(GlobalMap, AGroupWhoseEndsTheViewCutWhenItWasMadeIsPlacedFromTheEndsSeenSince) {
   // Driving along x at 0.1 m an iteration, the walls fixing the pose. Group 1, made at
   // iteration 6, knows the far ends (x = 3) of the hallway's two sides and the end wall x = 4 by

@@ -293,6 +293,13 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
     const SeenWall seen = SeenWhenMade(state, g, id, options);
     if (seen.iteration <= latest || !from_fixed(seen)) continue;
     if (!MemberShowsEnd(state, g, id, seen, rel.ref)) continue;
+    // Nor a member whose end the fixed poses just before did not see still, as for the basis
+    // (§II.C: a wall end stands still): a far wall's end at a grazing angle is its last sample,
+    // which creeps along with the sensor (a hallway wall's end beside a door, seen 3.8 m away,
+    // lay 0.12 m short of its corner and put a door jamb's group, and the hallway after it, 0.13 m
+    // along the hallway).
+    const SeenWall& fixed = SeenFromFixedPose(state, g, id);
+    if (fixed.valid && fixed.cut[rel.ref]) continue;
     latest = seen.iteration;
     prior = PlacementFromSighting(seen, rel);
   }
