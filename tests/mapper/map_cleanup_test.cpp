@@ -1,5 +1,5 @@
-// §II.D end, on the published map: a wall seen as a second rltplane lying inside a better
-// observed one on the same line is shown once; what "the same line" allows depends on how well
+// §II.D end, on the published map: a wall seen as a second rltplane lying inside another on the
+// same line is shown once; what "the same line" allows depends on how well
 // the piece's orientation is known, which is by its length.
 #include "relplane/mapper/map_cleanup.hpp"
 
@@ -46,6 +46,25 @@ TEST(MapCleanup, AShortPieceInsideAWallIsTheWallWhateverItsFitsTurn) {
   MergeDuplicateWalls(&planes);
   EXPECT_TRUE(Kept(planes, 1));
   EXPECT_FALSE(Kept(planes, 2));
+}
+
+TEST(MapCleanup, AWallLyingInsideAnotherIsThatWallHoweverOftenItWasSeen) {
+  // A wall's second rltplane (made from a sighting fitted off while turning in place, then
+  // seen as often as the first): it lies inside the first, 0.13 m short of its end, with one
+  // sighting more. It is the same wall, shown once, over the whole extent seen.
+  std::vector<MappedPlane> planes = {Mapped(1, {0, 2}, {2, 2}, 112),
+                                     Mapped(2, {0.13, 2.005}, {2.01, 2.005}, 113)};
+  MergeDuplicateWalls(&planes);
+  EXPECT_TRUE(Kept(planes, 1));
+  EXPECT_FALSE(Kept(planes, 2));
+}
+
+TEST(MapCleanup, OfTwoWallsEachInsideTheOtherTheBetterObservedStays) {
+  std::vector<MappedPlane> planes = {Mapped(1, {0, 2}, {2, 2}, 112),
+                                     Mapped(2, {0.05, 2.005}, {2.05, 2.005}, 113)};
+  MergeDuplicateWalls(&planes);
+  EXPECT_FALSE(Kept(planes, 1));
+  EXPECT_TRUE(Kept(planes, 2));
 }
 
 TEST(MapCleanup, ALongerPieceTurnedAsMuchIsAnotherWall) {

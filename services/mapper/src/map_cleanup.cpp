@@ -76,20 +76,30 @@ void Extend(MappedPlane* wall, double s0, double s1, int64_t observations) {
 void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
   std::vector<MappedPlane>& planes = *planes_in;
   std::vector<bool> drop(planes.size(), false);
-  // A wall lying inside another on the same line is the same wall seen as a second rltplane;
-  // keep the better-observed one.
+  // A wall lying inside another on the same line is the same wall seen as a second rltplane
+  // (§II.A end: a placed rltplane merged with a previous one); the wall is the one it lies in,
+  // however many sightings each has (a wall's second rltplane, made from a sighting the
+  // segmenter fitted 8 degrees off while turning in place, had one sighting more than the first
+  // and lay inside it: both stayed on the map). Where each lies inside the other, the
+  // better-observed one is kept.
+  const auto inside = [&](const MappedPlane& a, const MappedPlane& b) {
+    if (!OnLine(b, a)) return false;
+    const Vector2d t = DirectionOf(b);
+    const double s0 = std::min(t.dot(End(b, 0)), t.dot(End(b, 1))) - kMergeDistance;
+    const double s1 = std::max(t.dot(End(b, 0)), t.dot(End(b, 1))) + kMergeDistance;
+    bool in = true;
+    for (int e = 0; e < 2; ++e) in = in && t.dot(End(a, e)) >= s0 && t.dot(End(a, e)) <= s1;
+    return in;
+  };
   for (size_t i = 0; i < planes.size(); ++i) {
     const MappedPlane& a = planes[i];
     for (size_t j = 0; j < planes.size() && !drop[i]; ++j) {
       const MappedPlane& b = planes[j];
-      if (i == j || drop[j] || !OnLine(b, a)) continue;
-      if (b.observations < a.observations || (b.observations == a.observations && j > i)) continue;
-      const Vector2d t = DirectionOf(b);
-      const double s0 = std::min(t.dot(End(b, 0)), t.dot(End(b, 1))) - kMergeDistance;
-      const double s1 = std::max(t.dot(End(b, 0)), t.dot(End(b, 1))) + kMergeDistance;
-      bool inside = true;
-      for (int e = 0; e < 2; ++e) inside = inside && t.dot(End(a, e)) >= s0 && t.dot(End(a, e)) <= s1;
-      drop[i] = inside;
+      if (i == j || drop[j] || !inside(a, b)) continue;
+      const bool a_better =
+          a.observations > b.observations || (a.observations == b.observations && i < j);
+      if (a_better && inside(b, a)) continue;
+      drop[i] = true;
     }
   }
   // A piece known only by its line continues the nearest wall on its line that may go on
