@@ -11,6 +11,8 @@
 #include <optional>
 
 #include "ideal_segmenter.hpp"
+#include "relplane/common/geometry.hpp"
+#include "relplane/mapper/comparison.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -537,6 +539,82 @@ TEST(GlobalMap, AWallKnownByItsOrientationOnlyIsPlacedFromItsAgreeingSightings) 
   EXPECT_LT(std::abs(std::sin(placed.alpha - side_alpha)), 0.1 * M_PI / 180.0);
   const Vector2d corner(3.0, 1.0);
   EXPECT_NEAR(NormalOf(placed.alpha).dot(corner - placed.point), 0.0, 0.005);
+}
+
+TEST(GlobalMap, AWallSeenThroughADoorTakesItsOrientationFromThePiecesOnBothSides) {
+  // Standing at the origin, the walls fixing the pose, looking through a door in the wall x = 3
+  // (y from -0.5 to 0.5) at the side wall y = 2 of the room beyond. The pieces of x = 3 beside
+  // the door are all of that wall in view, 0.2 m each, and their fits are off the same way
+  // towards the door, mirrored: the upper one (plane 0) turned by -1.5 degrees, the lower one
+  // (plane 1) by +1.5. Group 0 mapped both pieces from when they were seen whole; group 1 holds
+  // the upper piece and the side wall (plane 2), which it placed 1.5 degrees off through their
+  // comparison alone. The lower piece's comparison with the side wall reads the other way
+  // (§V soft linking: every comparison between mapped walls places their orientations, not only
+  // those of the group that placed one of them), so the side wall lies within 0.2 degrees.
+  const double off = 1.5 * M_PI / 180.0;
+  const Vector2d up(std::sin(off), std::cos(off)), down(std::sin(off), -std::cos(off));
+  MapperState state;
+  state.first_iteration = 0;
+  ComparisonOptions options;
+  const int64_t last = 19;
+  for (int64_t k = 0; k <= last; ++k) {
+    state.poses[k] = {0.0, 0.0, 0.0};
+    state.fixed_poses.insert(k);
+  }
+  const auto seen = [](const Vector2d& a, const Vector2d& b, int64_t k) {
+    return *MakeObservation(testing::WallSeen(a, b), k, 0.3);
+  };
+  const Vector2d upper(3, 0.5), lower(3, -0.5), side0(4, 2), side1(9, 2);
+  RltPlane upper_piece(0, seen(upper, upper + 0.2 * up, 0), 0.05, 1000);
+  RltPlane lower_piece(1, seen(lower, lower + 0.2 * down, 0), 0.05, 1000);
+  RltPlane side(2, seen(side0, side1, 0), 0.05, 1000);
+  for (int64_t k = 1; k <= last; ++k) {
+    upper_piece.Add(seen(upper, upper + 0.2 * up, k));
+    lower_piece.Add(seen(lower, lower + 0.2 * down, k));
+    side.Add(seen(side0, side1, k));
+  }
+  upper_piece.groups = {0, 1};
+  lower_piece.groups = {0};
+  side.groups = {1};
+  // The true orientations, as the pieces' fits would give them seen whole.
+  const double wall_alpha = seen({3, 0.5}, {3, 2}, 0).Alpha();
+  const double lower_alpha = seen({3, -0.5}, {3, -2}, 0).Alpha();
+  const double side_alpha = seen(side0, side1, 0).Alpha();
+  state.planes.emplace(0, std::move(upper_piece));
+  state.planes.emplace(1, std::move(lower_piece));
+  state.planes.emplace(2, std::move(side));
+  for (const auto& [a, b] : {std::pair<int64_t, int64_t>{0, 1}, {0, 2}, {1, 2}}) {
+    Comparison& c = state.comparisons.emplace(KeyOf(a, b), Comparison(a, b)).first->second;
+    c.Update(*state.Plane(a), *state.Plane(b), last, options, 5);
+  }
+  const Comparison* upper_side = state.FindComparison(0, 2);
+  const Comparison* lower_side = state.FindComparison(1, 2);
+  ASSERT_GT(upper_side->PieceInformation(), 0.0);
+  ASSERT_GT(lower_side->PieceInformation(), 0.0);
+  // The comparisons read the pieces' biases, in opposite directions.
+  ASSERT_NEAR(geometry::WrapAngle(upper_side->PieceAlpha(0) - (side_alpha - wall_alpha)), off,
+              0.1 * off);
+  ASSERT_NEAR(geometry::WrapAngle(lower_side->PieceAlpha(1) - (side_alpha - lower_alpha)), -off,
+              0.1 * off);
+  const Placement upper_line = Placed(wall_alpha, {3, 1}, -1, Known::kLine);
+  const Placement lower_line = Placed(lower_alpha, {3, -1}, -1, Known::kLine);
+  const Group first = Built(0, 0, {{0, upper_line}, {1, lower_line}}, 0);
+  const Group through_door =
+      Built(1, 10,
+            {{0, Placed(0.0, {0, 0}, -1, Known::kLine)},
+             {2, Placed(upper_side->PieceAlpha(0), {1, 2}, -1, Known::kLine)}},
+            0);
+  state.groups = {first, through_door};
+  state.global = {{0, upper_line}, {1, lower_line}};
+  state.placed_by = {{0, 0}, {1, 0}};
+  BuildGlobalMap(state, 1, MapperOptions{});
+  ASSERT_TRUE(state.global.count(2));
+  // Through the upper piece alone: 1.5 degrees.
+  EXPECT_LT(std::abs(geometry::WrapAngle(state.global.at(2).alpha - side_alpha)),
+            0.2 * M_PI / 180.0);
+  // The first group's walls are held.
+  EXPECT_NEAR(state.global.at(0).alpha, wall_alpha, 1e-12);
+  EXPECT_NEAR(state.global.at(1).alpha, lower_alpha, 1e-12);
 }
 
 }  // namespace

@@ -86,6 +86,7 @@ void DropPlane(MapperState& state, int64_t id) {
   }
   state.global.erase(id);
   state.placed_by.erase(id);
+  state.chained_alpha.erase(id);
   state.recent.erase(id);
   state.ungrouped.erase(std::remove(state.ungrouped.begin(), state.ungrouped.end(), id),
                         state.ungrouped.end());

@@ -33,4 +33,11 @@ void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& 
 // later one). Placements made by those groups are recomputed.
 void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options);
 
+// Soft-linked orientations (the paper's future work, §V): each global plane's orientation from
+// every comparison between planes on the global map, not only those of the group that placed
+// it, the first group's planes held. A wall first seen through a door is placed by a group whose
+// only comparisons with the walls already mapped are short pieces beside the door, fitted off
+// the same way on one side; a later group holding the jamb on the other side balances them.
+void RefineGlobalOrientations(MapperState& state);
+
 }  // namespace relplane::mapper

@@ -104,6 +104,9 @@ struct MapperState {
   std::set<int64_t> recent;                   // seen within the last-seen window (§II.A)
   std::map<int64_t, Placement> global;        // §II.D global map: plane id -> world placement
   std::map<int64_t, int64_t> placed_by;       // plane id -> group index that placed it
+  // Each global plane's orientation as the hard chain placed it, before RefineGlobalOrientations
+  // (global_map.hpp) took in the comparisons of the groups after the one that placed it.
+  std::map<int64_t, double> chained_alpha;
   std::map<int64_t, geometry::Pose2> poses;   // iteration -> estimated pose (recent only)
   // Iterations of `poses` the walls fixed in every direction (tracking, §II.D), and the first
   // iteration's (the anchor). Elsewhere the motion model kept a direction at its old value
