@@ -1,6 +1,7 @@
 #include "relplane/mapper/global_map.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -652,7 +653,8 @@ void RefineGlobalOrientations(MapperState& state) {
     const auto it = state.chained_alpha.find(id);
     return it != state.chained_alpha.end() ? it->second : state.global.at(id).alpha;
   };
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+  // Sparse: a wall is compared only with those seen with it, and the map grows with the run.
+  std::vector<Eigen::Triplet<double>> a;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
   for (const auto& [key, cmp] : state.comparisons) {
     const auto px = state.global.find(key.first), py = state.global.find(key.second);
@@ -664,13 +666,17 @@ void RefineGlobalOrientations(MapperState& state) {
     if (x < 0 && y < 0) continue;
     const double r =
         geometry::WrapAngle(chained(key.second) - chained(key.first) - cmp.PieceAlpha(key.first));
-    if (y >= 0) a(y, y) += w, b(y) -= w * r;
-    if (x >= 0) a(x, x) += w, b(x) += w * r;
-    if (x >= 0 && y >= 0) a(x, y) -= w, a(y, x) -= w;
+    if (y >= 0) a.emplace_back(y, y, w), b(y) -= w * r;
+    if (x >= 0) a.emplace_back(x, x, w), b(x) += w * r;
+    if (x >= 0 && y >= 0) a.emplace_back(x, y, -w), a.emplace_back(y, x, -w);
   }
   // A weak prior at the chained value: the gauge of planes no comparison ties to the held ones.
-  for (int k = 0; k < n; ++k) a(k, k) += kChainedOrientationPrior;
-  const Eigen::VectorXd dx = a.ldlt().solve(b);
+  for (int k = 0; k < n; ++k) a.emplace_back(k, k, kChainedOrientationPrior);
+  Eigen::SparseMatrix<double> h(n, n);
+  h.setFromTriplets(a.begin(), a.end());  // duplicates are summed
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(h);
+  if (solver.info() != Eigen::Success) return;
+  const Eigen::VectorXd dx = solver.solve(b);
   if (!dx.allFinite()) return;
   for (int k = 0; k < n; ++k) {
     state.global.at(ids[k]).alpha = geometry::WrapAngle(chained(ids[k]) + dx(k));
