@@ -240,11 +240,22 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
               x.world.known == Known::kPoint && EdgePoint(*x.plane, x.world, e, &mapped);
           if (!placed && (!x.end_seen[e] || x.obs->cut[e])) continue;
           const double along = t.dot((placed ? mapped : x.end[e]) - rot * x.obs->edge[e]);
-          if (std::abs(along - t.dot(previous.Translation())) >= kEdgeGate) continue;
+          const double moved = along - t.dot(previous.Translation());
           if (placed) {
+            if (std::abs(moved) >= kEdgeGate) continue;
             sys.Add(t, along);
             continue;
           }
+          // Such an end is looked up only where no motion is known, so `previous` is the pose
+          // held still, not a prediction: the sensor has since moved forwards by up to a step
+          // (the platform drives forwards), never back. An end that puts it further back than
+          // its noise is seen past where it stands (a corner's end 2 m ahead, seen 0.13 m past
+          // the corner for an iteration): taken, it set the position back, and the gate about
+          // that lagging position then turned away every end until the hallway's first door
+          // frame, 0.26 m behind for 30 iterations.
+          const double forwards = t.dot(rot.col(0)) >= 0.0 ? moved : -moved;
+          const double noise = LearnedFrustum::kEdgeNoise;
+          if (forwards <= -noise || forwards >= kMaxStep + noise) continue;
           const double h = std::abs(NormalOf(x.obs->Alpha()).dot(x.obs->edge[e]));
           const double spacing =
               h > 0.0 ? x.obs->edge[e].squaredNorm() / h : std::numeric_limits<double>::infinity();

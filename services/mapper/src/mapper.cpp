@@ -278,7 +278,6 @@ geometry::Pose2 Mapper::Predict(int64_t iteration, bool* known) const {
   constexpr int64_t kWindow = 15;  // iterations: the velocity is averaged over this span
   constexpr int64_t kMinSpan = 10;
   constexpr int64_t kMaxGap = 30;   // iterations lost in a row beyond which nothing is predicted
-  constexpr double kMaxStep = 0.1;  // m per iteration (3 m/s at 30 Hz)
   const std::set<int64_t>& fixed = state_.fixed_poses;
   if (fixed.empty() || last_iteration_ < 0 || iteration - last_iteration_ > kMaxGap) return pose_;
   const int64_t i1 = *fixed.rbegin();

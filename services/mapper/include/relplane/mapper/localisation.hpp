@@ -54,10 +54,10 @@ class LearnedFrustum {
   // and reaches the range within the bearing margin (rays grazing a wall sample it sparsely,
   // and the last sample in range may lie well short of the limit).
   bool Clipped(const Eigen::Vector2d& edge, const Eigen::Vector2d& other) const;
+  static constexpr double kEdgeNoise = 0.03;  // m, a wall end's position noise (2 sigma)
 
  private:
   static constexpr double kBearingMargin = 0.035;  // rad (2 degrees)
-  static constexpr double kEdgeNoise = 0.03;       // m, a wall end's position noise (2 sigma)
   static constexpr double kBinWidth = 0.0087;      // rad (0.5 degrees)
   static constexpr int kBins = 362;                // up to pi
   static constexpr double kRangeBin = 0.02;        // m
@@ -87,6 +87,10 @@ double OrientationWeight(const Observation& obs);
 // orientation can be trusted when a group is turned onto the map (a door jamb or a sliver of
 // wall seen over a few centimetres must not turn walls metres long).
 double OrientationWeight(const RltPlane& plane);
+
+// The farthest the platform moves in an iteration (3 m/s at 30 Hz): what a learnt velocity is
+// capped at, and how far ahead of the previous pose a wall end may put it when no motion is known.
+constexpr double kMaxStep = 0.1;  // m
 
 // Information (smallest eigenvalue of the sum of n n^T over unit wall normals) below which
 // walls leave a direction open: lines within ~11 degrees of parallel.
