@@ -548,7 +548,8 @@ TEST(GlobalMap, AWallSeenThroughADoorTakesItsOrientationFromThePiecesOnBothSides
   // towards the door, mirrored: the upper one (plane 0) turned by -1.5 degrees, the lower one
   // (plane 1) by +1.5. Group 0 mapped both pieces from when they were seen whole; group 1 holds
   // the upper piece and the side wall (plane 2), which it placed 1.5 degrees off through their
-  // comparison alone. The lower piece's comparison with the side wall reads the other way
+  // comparison alone. The lower piece's comparison with the side wall, in a later group, reads
+  // the other way
   // (§V soft linking: every comparison between mapped walls places their orientations, not only
   // those of the group that placed one of them), so the side wall lies within 0.2 degrees.
   const double off = 1.5 * M_PI / 180.0;
@@ -574,8 +575,8 @@ TEST(GlobalMap, AWallSeenThroughADoorTakesItsOrientationFromThePiecesOnBothSides
     side.Add(seen(side0, side1, k));
   }
   upper_piece.groups = {0, 1};
-  lower_piece.groups = {0};
-  side.groups = {1};
+  lower_piece.groups = {0, 2};
+  side.groups = {1, 2};
   // The true orientations, as the pieces' fits would give them seen whole.
   const double wall_alpha = seen({3, 0.5}, {3, 2}, 0).Alpha();
   const double lower_alpha = seen({3, -0.5}, {3, -2}, 0).Alpha();
@@ -604,7 +605,13 @@ TEST(GlobalMap, AWallSeenThroughADoorTakesItsOrientationFromThePiecesOnBothSides
             {{0, Placed(0.0, {0, 0}, -1, Known::kLine)},
              {2, Placed(upper_side->PieceAlpha(0), {1, 2}, -1, Known::kLine)}},
             0);
-  state.groups = {first, through_door};
+  // Group 2, made later, holds the lower piece and the side wall: their comparison.
+  const Group beyond =
+      Built(2, 15,
+            {{1, Placed(0.0, {0, 0}, -1, Known::kLine)},
+             {2, Placed(lower_side->PieceAlpha(1), {1, 2}, -1, Known::kLine)}},
+            1);
+  state.groups = {first, through_door, beyond};
   state.global = {{0, upper_line}, {1, lower_line}};
   state.placed_by = {{0, 0}, {1, 0}};
   BuildGlobalMap(state, 1, MapperOptions{});

@@ -609,6 +609,7 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
   }
   // Soft-linked groups: when a loop closes (or a closing tie learns more), the group placements
   // are solved together over the graph of ties and every group re-places its members.
+  size_t refine_from = from;
   int evidence = 0;
   for (const Group& group : state.groups) evidence += group.loop_evidence;
   if (options.graph.enabled && evidence > state.loop_evidence) {
@@ -619,13 +620,14 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
       state.global.clear();
       state.placed_by.clear();
       for (size_t g = 0; g < state.groups.size(); ++g) PlaceMembers(state, g, options);
+      refine_from = 0;
     }
   }
-  RefineGlobalOrientations(state);
+  RefineGlobalOrientations(state, refine_from);
   state.map_changed = true;
 }
 
-void RefineGlobalOrientations(MapperState& state) {
+void RefineGlobalOrientations(MapperState& state, size_t from) {
   // Least squares on the corrections from the chained orientations, as RefineOrientations does
   // within a group, over every comparison between two planes on the global map; the first
   // group's planes are held (§II.D: it is placed from the start pose). Hard chaining (§II.D)
@@ -639,33 +641,43 @@ void RefineGlobalOrientations(MapperState& state) {
   // those walls were there, in other groups, and balance them: 0.09 degrees, the walls within
   // 4 cm. Anchored at the chained values rather than at the last solution, so solving again
   // after every placement does not walk the orientations away (as pose_graph.cpp's priors).
+  // The planes placed before `from` were not re-placed: they are held as last solved.
   std::vector<int64_t> ids;
   std::map<int64_t, int> index;
-  for (const auto& [id, placed] : state.global) {
-    const auto by = state.placed_by.find(id);
-    if (by == state.placed_by.end() || by->second == 0 || !state.chained_alpha.count(id)) continue;
+  for (const auto& [id, g] : state.placed_by) {
+    if (g == 0 || static_cast<size_t>(g) < from || !state.chained_alpha.count(id)) continue;
     index[id] = static_cast<int>(ids.size());
     ids.push_back(id);
   }
   const int n = static_cast<int>(ids.size());
   if (n == 0) return;
-  auto chained = [&](int64_t id) {
-    const auto it = state.chained_alpha.find(id);
+  // A solved plane from its chained orientation, a held one as it stands.
+  auto value = [&](int64_t id) {
+    const auto it = index.count(id) ? state.chained_alpha.find(id) : state.chained_alpha.end();
     return it != state.chained_alpha.end() ? it->second : state.global.at(id).alpha;
   };
-  // Sparse: a wall is compared only with those seen with it, and the map grows with the run.
+  // Sparse: a plane is compared only with the members of its groups (§II.C).
+  std::set<PairKey> pairs;
+  for (int64_t id : ids) {
+    for (int64_t g : state.Plane(id)->groups) {
+      for (int64_t other : state.groups[g].members) {
+        if (other != id) pairs.insert(KeyOf(id, other));
+      }
+    }
+  }
   std::vector<Eigen::Triplet<double>> a;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
-  for (const auto& [key, cmp] : state.comparisons) {
-    const auto px = state.global.find(key.first), py = state.global.find(key.second);
-    if (px == state.global.end() || py == state.global.end()) continue;
-    const double w = cmp.PieceInformation();
+  for (const PairKey& key : pairs) {
+    const Comparison* cmp = state.FindComparison(key.first, key.second);
+    if (cmp == nullptr || !state.global.count(key.first) || !state.global.count(key.second)) {
+      continue;
+    }
+    const double w = cmp->PieceInformation();
     if (w <= 0.0) continue;
     const auto ix = index.find(key.first), iy = index.find(key.second);
     const int x = ix == index.end() ? -1 : ix->second, y = iy == index.end() ? -1 : iy->second;
-    if (x < 0 && y < 0) continue;
     const double r =
-        geometry::WrapAngle(chained(key.second) - chained(key.first) - cmp.PieceAlpha(key.first));
+        geometry::WrapAngle(value(key.second) - value(key.first) - cmp->PieceAlpha(key.first));
     if (y >= 0) a.emplace_back(y, y, w), b(y) -= w * r;
     if (x >= 0) a.emplace_back(x, x, w), b(x) += w * r;
     if (x >= 0 && y >= 0) a.emplace_back(x, y, -w), a.emplace_back(y, x, -w);
@@ -679,7 +691,7 @@ void RefineGlobalOrientations(MapperState& state) {
   const Eigen::VectorXd dx = solver.solve(b);
   if (!dx.allFinite()) return;
   for (int k = 0; k < n; ++k) {
-    state.global.at(ids[k]).alpha = geometry::WrapAngle(chained(ids[k]) + dx(k));
+    state.global.at(ids[k]).alpha = geometry::WrapAngle(value(ids[k]) + dx(k));
   }
 }
 

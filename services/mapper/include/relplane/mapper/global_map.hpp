@@ -38,6 +38,8 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
 // it, the first group's planes held. A wall first seen through a door is placed by a group whose
 // only comparisons with the walls already mapped are short pieces beside the door, fitted off
 // the same way on one side; a later group holding the jamb on the other side balances them.
-void RefineGlobalOrientations(MapperState& state);
+// Only the planes groups `from`, `from + 1`, ... placed are solved, against the others as they
+// stand: the map grows with the run while what one iteration re-places does not.
+void RefineGlobalOrientations(MapperState& state, size_t from = 0);
 
 }  // namespace relplane::mapper
