@@ -106,21 +106,14 @@ double Std1(const double* sums, double n) {
   return std::sqrt(std::max(0.0, sums[1] / n - (sums[0] / n) * (sums[0] / n)));
 }
 
-struct Verdict {
-  DirectedStats stats[2];
-  bool ambiguous = false;
-  bool static_a[2] = {false, false};
-  bool static_b[2] = {false, false};
-};
-
 // §II.C static edges: of the four pairings the one with the lowest standard deviation pairs the
 // static edges. Every pairing under the threshold is static (a wall seen whole has two).
 // Parallel planes across from each other can show a static-static and a dynamic-dynamic pairing
 // that are both steady: without other information the two cannot be told apart, so such a
 // sub-interval gives no location along the walls (the reordering in relative_map.cpp then
 // reaches these planes through other comparisons).
-Verdict Judge(const SubInterval& s, const ComparisonOptions& options) {
-  Verdict v;
+StaticVerdict Judge(const SubInterval& s, const ComparisonOptions& options) {
+  StaticVerdict v;
   const double n = s.n;
   if (n < options.min_samples) return v;
   double motion = 0.0;
@@ -195,6 +188,15 @@ Verdict Judge(const SubInterval& s, const ComparisonOptions& options) {
   return v;
 }
 
+// Judge's verdict on `s`, kept in it until its sums change.
+const StaticVerdict& Judged(SubInterval& s, const ComparisonOptions& options) {
+  if (!s.judged) {
+    s.verdict = Judge(s, options);
+    s.judged = true;
+  }
+  return s.verdict;
+}
+
 }  // namespace
 
 DirectedStats::DirectedStats() {
@@ -237,16 +239,6 @@ bool DirectedStats::Line(int i, double* mean) const {
   if (line_count[i] <= 0.0) return false;
   *mean = line_sum[i] / line_count[i];
   return true;
-}
-
-double Comparison::DeltaAlpha(int64_t from) const {
-  const double d = std::atan2(wsin_sum_, wcos_sum_);
-  return from == a_ ? d : -d;
-}
-
-double Comparison::PieceAlpha(int64_t from) const {
-  const double d = std::atan2(psin_sum_, pcos_sum_);
-  return from == a_ ? d : -d;
 }
 
 void Comparison::Update(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options,
@@ -300,6 +292,7 @@ void Comparison::Rebuild(RltPlane& a, RltPlane& b, int64_t now, const Comparison
       open_.push_back(s);
     }
     open_.back().last = ka;
+    open_.back().judged = false;
     AddSample(obs_a[ia], obs_b[ib], &open_.back());
     ++ia;
     ++ib;
@@ -307,8 +300,8 @@ void Comparison::Rebuild(RltPlane& a, RltPlane& b, int64_t now, const Comparison
   processed_until_ = std::max(processed_until_, now + 1);
   // Freeze sub-intervals that can no longer be re-split.
   while (open_.size() > 1 && open_.front().last < now - options.freeze_lag) {
-    const SubInterval& s = open_.front();
-    const Verdict v = Judge(s, options);
+    SubInterval& s = open_.front();
+    const StaticVerdict& v = Judged(s, options);
     frozen_[0].Add(v.stats[0]);
     frozen_[1].Add(v.stats[1]);
     frozen_n_ += s.n;
@@ -336,8 +329,8 @@ void Comparison::Summarise(RltPlane& a, RltPlane& b, int64_t now,
   pcos_sum_ = frozen_pcos_;
   piece_information_ = frozen_piece_information_;
   ambiguous_ = frozen_ambiguous_;
-  for (const SubInterval& s : open_) {
-    const Verdict v = Judge(s, options);
+  for (SubInterval& s : open_) {
+    const StaticVerdict& v = Judged(s, options);
     total_[0].Add(v.stats[0]);
     total_[1].Add(v.stats[1]);
     common_ += s.n;
@@ -357,6 +350,8 @@ void Comparison::Summarise(RltPlane& a, RltPlane& b, int64_t now,
       }
     }
   }
+  delta_alpha_ = std::atan2(wsin_sum_, wcos_sum_);
+  piece_alpha_ = std::atan2(psin_sum_, pcos_sum_);
 }
 
 }  // namespace relplane::mapper

@@ -132,15 +132,7 @@ double OrientationWeight(const Observation& obs) {
   return 1.0 / (sigma * sigma + kOrientationFloor * kOrientationFloor);
 }
 
-double OrientationWeight(const RltPlane& plane) {
-  const auto& all = plane.Observations();
-  RltPlane::ObservationCache& cache = plane.orientation_weight;
-  if (cache.Holds(all)) return cache.value;
-  double best = 0.0;
-  for (const Observation& obs : all) best = std::max(best, OrientationWeight(obs));
-  cache = {all.size(), all.front().iteration, all.back().iteration, best};
-  return best;
-}
+double OrientationWeight(const RltPlane& plane) { return plane.BestOrientationWeight(); }
 
 Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& b,
                                const Eigen::Vector2d& previous, double prior_weight,

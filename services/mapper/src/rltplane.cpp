@@ -1,7 +1,10 @@
 #include "relplane/mapper/rltplane.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+
+#include "relplane/mapper/localisation.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -88,6 +91,11 @@ void RltPlane::Add(Observation obs) {
   }
   z_min_ = std::min(z_min_, obs.z_min);
   z_max_ = std::max(z_max_, obs.z_max);
+  const double weight = OrientationWeight(obs);
+  if (!std::isnan(weight)) {  // a NaN is never the largest (std::max keeps the other)
+    while (!weight_max_.empty() && weight_max_.back().second <= weight) weight_max_.pop_back();
+    weight_max_.emplace_back(it, weight);
+  }
   observations_.push_back(std::move(obs));
   ++count_;
   if (observations_.size() > max_observations_) {
@@ -101,6 +109,7 @@ void RltPlane::DropBefore(int64_t iteration) {
     observations_.pop_front();
   }
   const int64_t first = observations_.front().iteration;
+  while (!weight_max_.empty() && weight_max_.front().first < first) weight_max_.pop_front();
   // Phase starts older than the stored observations are no longer needed.
   while (phase_starts_.size() > 2 && phase_starts_[1] <= first) {
     phase_starts_.erase(phase_starts_.begin());
@@ -123,6 +132,11 @@ void RltPlane::DropBefore(int64_t iteration) {
 }
 
 size_t RltPlane::LowerBound(int64_t iteration) const {
+  // Most look-ups are for the latest sightings (a comparison brought up to date each
+  // iteration): those are answered without the search.
+  const size_t n = observations_.size();
+  if (n == 0 || observations_.back().iteration < iteration) return n;
+  if (n == 1 || observations_[n - 2].iteration < iteration) return n - 1;
   auto it = std::lower_bound(
       observations_.begin(), observations_.end(), iteration,
       [](const Observation& o, int64_t value) { return o.iteration < value; });

@@ -37,6 +37,15 @@ struct DirectedStats {
   double PairCount(int i) const { return pair_count[i][0] + pair_count[i][1]; }
 };
 
+// What a sub-interval's sums say (§II.C): its static pairings and steady lines as sums to add
+// to the comparison's totals, whether it was dropped as ambiguous, which edges were static.
+struct StaticVerdict {
+  DirectedStats stats[2];
+  bool ambiguous = false;
+  bool static_a[2] = {false, false};
+  bool static_b[2] = {false, false};
+};
+
 // Running sums of one sub-interval (constant growth phase of both planes, no gap).
 struct SubInterval {
   int64_t first = 0;
@@ -66,6 +75,10 @@ struct SubInterval {
   // pairing's samples: did those two edges move in the view?
   double pair_edges[2][2][2][4] = {};
   int cut[4] = {0, 0, 0, 0};  // samples where A's edges 0, 1 and B's edges 0, 1 were cut
+  // The verdict on these sums, kept until a sample is added: the open sub-intervals are summed
+  // up at every iteration, and judging each of them again took a tenth of an iteration.
+  bool judged = false;
+  StaticVerdict verdict;
 };
 
 class Comparison {
@@ -85,7 +98,7 @@ class Comparison {
   const DirectedStats& From(int64_t from) const { return from == a_ ? total_[0] : total_[1]; }
   // Frame angle of the other plane minus that of `from`: the orientation difference averaged
   // over the common interval, each iteration weighted by how well both fits fix it.
-  double DeltaAlpha(int64_t from) const;
+  double DeltaAlpha(int64_t from) const { return from == a_ ? delta_alpha_ : -delta_alpha_; }
   // Information (rad^-2) of DeltaAlpha: the sum of the iterations' weights.
   double Information() const { return information_; }
   // The orientation difference and its information with each fit's bias over its length added
@@ -94,7 +107,7 @@ class Comparison {
   // not say. Added per iteration, not once per comparison: once, every comparison's weight would
   // be its pieces' bias alone, whatever the length of its interval (a comparison of two walls
   // over 5 iterations weighed as one over 500).
-  double PieceAlpha(int64_t from) const;
+  double PieceAlpha(int64_t from) const { return from == a_ ? piece_alpha_ : -piece_alpha_; }
   double PieceInformation() const { return piece_information_; }
   // Iterations in the common interval so far.
   double Common() const { return common_; }
@@ -130,6 +143,10 @@ class Comparison {
   double psin_sum_ = 0.0;
   double pcos_sum_ = 0.0;
   double piece_information_ = 0.0;
+  // atan2 of the sums above, worked out once per update: the relative maps ask for them for
+  // every pairing of every build.
+  double delta_alpha_ = 0.0;
+  double piece_alpha_ = 0.0;
   double common_ = 0.0;
   int ambiguous_ = 0;
 };

@@ -2,6 +2,7 @@
 // The rltplane (Fig. 1): one wall's untransformed observations by iteration, plus what the
 // pairwise comparisons learn about it (growth phases, static edges, full length).
 
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <utility>
@@ -69,20 +70,10 @@ class RltPlane {
   // Groups this plane belongs to, in creation order (§II.B).
   std::vector<int64_t> groups;
 
-  // A value computed from all stored observations (OrientationWeight), kept with the
-  // observations it was computed from: recomputing it for every link of every group placement
-  // took a tenth of an iteration.
-  struct ObservationCache {
-    size_t size = 0;
-    int64_t first = -1;
-    int64_t last = -1;
-    double value = 0.0;
-    bool Holds(const std::deque<Observation>& obs) const {
-      return !obs.empty() && size == obs.size() && first == obs.front().iteration &&
-             last == obs.back().iteration;
-    }
-  };
-  mutable ObservationCache orientation_weight;
+  // The largest OrientationWeight of the stored observations (0 when there is none).
+  double BestOrientationWeight() const {
+    return weight_max_.empty() ? 0.0 : std::max(0.0, weight_max_.front().second);
+  }
 
  private:
   int64_t id_;
@@ -105,6 +96,11 @@ class RltPlane {
   double length_noise_ = 0.0;           // estimated standard deviation of the visible length
   double extreme_length_ = 0.0;
   int64_t extreme_iteration_ = 0;
+  // The stored observations whose OrientationWeight no later one reaches, oldest first, as
+  // (iteration, weight): the front is the largest weight of those stored (a sliding-window
+  // maximum, kept as observations are added and dropped). Every group placement asks for it,
+  // and going through all stored observations each time took a tenth of an iteration.
+  std::deque<std::pair<int64_t, double>> weight_max_;
 };
 
 }  // namespace relplane::mapper
