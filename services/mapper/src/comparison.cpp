@@ -27,10 +27,25 @@ double PieceBlur(const Observation& obs) {
   return std::atan2(kShortPieceBlur, std::max(obs.Length(), 1e-3));
 }
 
+}  // namespace
+
+ObservationTerms ComparisonTerms(const Observation& obs) {
+  ObservationTerms t;
+  t.alpha = obs.Alpha();
+  t.rotation_t = RotationT(t.alpha);
+  t.weight = OrientationWeight(obs);
+  t.blur = PieceBlur(obs);
+  return t;
+}
+
+namespace {
+
 // Adds one iteration's untransformed pair to the sub-interval's sums (§II.C algorithm: "rotate
 // both planes so rltplane 1 is at 0 degrees, add the dx dy to L_av, the orientation to O_av").
-void AddSample(const Observation& oa, const Observation& ob, SubInterval* s) {
-  const double alpha_a = oa.Alpha(), alpha_b = ob.Alpha();
+// ta, tb: the observations' terms (ComparisonTerms).
+void AddSample(const Observation& oa, const ObservationTerms& ta, const Observation& ob,
+               const ObservationTerms& tb, SubInterval* s) {
+  const double alpha_a = ta.alpha, alpha_b = tb.alpha;
   const double dalpha = geometry::WrapAngle(alpha_b - alpha_a);
   s->n += 1.0;
   s->sin_sum += std::sin(dalpha);
@@ -38,17 +53,17 @@ void AddSample(const Observation& oa, const Observation& ob, SubInterval* s) {
   // The difference's variance is the sum of both fits' orientation variances: an iteration
   // where one plane is a short piece (a door jamb, a wall the view cuts to a sliver) counts
   // for little.
-  const double w = 1.0 / (1.0 / OrientationWeight(oa) + 1.0 / OrientationWeight(ob));
+  const double w = 1.0 / (1.0 / ta.weight + 1.0 / tb.weight);
   s->wsin_sum += w * std::sin(dalpha);
   s->wcos_sum += w * std::cos(dalpha);
   s->information += w;
-  const double pa = PieceBlur(oa), pb = PieceBlur(ob);
-  const double wp =
-      1.0 / (1.0 / OrientationWeight(oa) + 1.0 / OrientationWeight(ob) + pa * pa + pb * pb);
+  const double pa = ta.blur, pb = tb.blur;
+  const double wp = 1.0 / (1.0 / ta.weight + 1.0 / tb.weight + pa * pa + pb * pb);
   s->psin_sum += wp * std::sin(dalpha);
   s->pcos_sum += wp * std::cos(dalpha);
   s->piece_information += wp;
-  const Eigen::Matrix2d rat = RotationT(alpha_a), rbt = RotationT(alpha_b);
+  const Eigen::Matrix2d& rat = ta.rotation_t;
+  const Eigen::Matrix2d& rbt = tb.rotation_t;
   const Vector2d nb_in_a = rat * ob.normal, na_in_b = rbt * oa.normal;
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) {
@@ -258,6 +273,7 @@ void Comparison::Rebuild(RltPlane& a, RltPlane& b, int64_t now, const Comparison
   phase_seen_b_ = b.LatestPhaseStart();
   if (redo_from != INT64_MAX && redo_from < processed_until_) {
     while (!open_.empty() && open_.back().last >= redo_from) open_.pop_back();
+    if (open_.size() < prefix_count_) prefix_count_ = 0;  // its sums hold the ones dropped
     processed_until_ = open_.empty() ? frozen_until_ : open_.back().last + 1;
   }
   // Walk the common iterations not yet summed.
@@ -293,7 +309,8 @@ void Comparison::Rebuild(RltPlane& a, RltPlane& b, int64_t now, const Comparison
     }
     open_.back().last = ka;
     open_.back().judged = false;
-    AddSample(obs_a[ia], obs_b[ib], &open_.back());
+    if (open_.size() - 1 < prefix_count_) prefix_count_ = 0;  // its sums hold this one's
+    AddSample(obs_a[ia], a.Terms(ia), obs_b[ib], b.Terms(ib), &open_.back());
     ++ia;
     ++ib;
   }
@@ -301,46 +318,37 @@ void Comparison::Rebuild(RltPlane& a, RltPlane& b, int64_t now, const Comparison
   // Freeze sub-intervals that can no longer be re-split.
   while (open_.size() > 1 && open_.front().last < now - options.freeze_lag) {
     SubInterval& s = open_.front();
-    const StaticVerdict& v = Judged(s, options);
-    frozen_[0].Add(v.stats[0]);
-    frozen_[1].Add(v.stats[1]);
-    frozen_n_ += s.n;
-    frozen_wsin_ += s.wsin_sum;
-    frozen_wcos_ += s.wcos_sum;
-    frozen_information_ += s.information;
-    frozen_psin_ += s.psin_sum;
-    frozen_pcos_ += s.pcos_sum;
-    frozen_piece_information_ += s.piece_information;
-    frozen_ambiguous_ += v.ambiguous ? 1 : 0;
+    AddTo(s, options, &frozen_);
     frozen_until_ = s.last + 1;
     open_.erase(open_.begin());
+    prefix_count_ = 0;
   }
+}
+
+void Comparison::AddTo(SubInterval& s, const ComparisonOptions& options, Sums* sums) {
+  const StaticVerdict& v = Judged(s, options);
+  sums->total[0].Add(v.stats[0]);
+  sums->total[1].Add(v.stats[1]);
+  sums->n += s.n;
+  sums->wsin += s.wsin_sum;
+  sums->wcos += s.wcos_sum;
+  sums->information += s.information;
+  sums->psin += s.psin_sum;
+  sums->pcos += s.pcos_sum;
+  sums->piece_information += s.piece_information;
+  sums->ambiguous += v.ambiguous ? 1 : 0;
 }
 
 void Comparison::Summarise(RltPlane& a, RltPlane& b, int64_t now,
                            const ComparisonOptions& options) {
-  total_[0] = frozen_[0];
-  total_[1] = frozen_[1];
-  common_ = frozen_n_;
-  wsin_sum_ = frozen_wsin_;
-  wcos_sum_ = frozen_wcos_;
-  information_ = frozen_information_;
-  psin_sum_ = frozen_psin_;
-  pcos_sum_ = frozen_pcos_;
-  piece_information_ = frozen_piece_information_;
-  ambiguous_ = frozen_ambiguous_;
+  if (prefix_count_ == 0) prefix_ = frozen_;
+  for (; prefix_count_ + 1 < open_.size(); ++prefix_count_) {
+    AddTo(open_[prefix_count_], options, &prefix_);
+  }
+  sums_ = prefix_;
+  if (prefix_count_ < open_.size()) AddTo(open_.back(), options, &sums_);
   for (SubInterval& s : open_) {
     const StaticVerdict& v = Judged(s, options);
-    total_[0].Add(v.stats[0]);
-    total_[1].Add(v.stats[1]);
-    common_ += s.n;
-    wsin_sum_ += s.wsin_sum;
-    wcos_sum_ += s.wcos_sum;
-    information_ += s.information;
-    psin_sum_ += s.psin_sum;
-    pcos_sum_ += s.pcos_sum;
-    piece_information_ += s.piece_information;
-    ambiguous_ += v.ambiguous ? 1 : 0;
     if (v.static_a[0] && v.static_a[1]) a.MarkFull(s.first, s.last);
     if (v.static_b[0] && v.static_b[1]) b.MarkFull(s.first, s.last);
     if (s.last == now) {  // the interval that includes this iteration: edges static now
@@ -350,8 +358,8 @@ void Comparison::Summarise(RltPlane& a, RltPlane& b, int64_t now,
       }
     }
   }
-  delta_alpha_ = std::atan2(wsin_sum_, wcos_sum_);
-  piece_alpha_ = std::atan2(psin_sum_, pcos_sum_);
+  delta_alpha_ = std::atan2(sums_.wsin, sums_.wcos);
+  piece_alpha_ = std::atan2(sums_.psin, sums_.pcos);
 }
 
 }  // namespace relplane::mapper

@@ -4,12 +4,13 @@
 #include <cmath>
 #include <cstdint>
 
-#include "relplane/mapper/localisation.hpp"
+#include "relplane/mapper/comparison.hpp"
 
 namespace relplane::mapper {
 namespace {
 
 constexpr double kFullLengthTolerance = 0.1;  // m, several times the edge noise
+constexpr int kFullLengthCap = 300;           // sightings averaged for the full length
 constexpr size_t kSmoothing = 5;              // lengths averaged for the growth phase
 constexpr double kNoiseHysteresis = 3.0;      // length noise sigmas
 
@@ -91,7 +92,8 @@ void RltPlane::Add(Observation obs) {
   }
   z_min_ = std::min(z_min_, obs.z_min);
   z_max_ = std::max(z_max_, obs.z_max);
-  const double weight = OrientationWeight(obs);
+  terms_.push_back(ComparisonTerms(obs));
+  const double weight = terms_.back().weight;
   if (!std::isnan(weight)) {  // a NaN is never the largest (std::max keeps the other)
     while (!weight_max_.empty() && weight_max_.back().second <= weight) weight_max_.pop_back();
     weight_max_.emplace_back(it, weight);
@@ -107,6 +109,7 @@ void RltPlane::DropBefore(int64_t iteration) {
   if (observations_.empty() || observations_.front().iteration >= iteration) return;
   while (observations_.size() > 1 && observations_.front().iteration < iteration) {
     observations_.pop_front();
+    terms_.pop_front();
   }
   const int64_t first = observations_.front().iteration;
   while (!weight_max_.empty() && weight_max_.front().first < first) weight_max_.pop_front();
@@ -166,13 +169,19 @@ double RltPlane::Length() const {
     // for a static edge): they are left out.
     double sum = 0.0;
     int n = 0;
-    for (auto r = full_ranges_.rbegin(); r != full_ranges_.rend() && n < 300; ++r) {
-      for (size_t i = LowerBound(r->first); i < observations_.size() && n < 300; ++i) {
+    capped_ = false;
+    for (auto r = full_ranges_.rbegin(); r != full_ranges_.rend() && n < kFullLengthCap; ++r) {
+      for (size_t i = LowerBound(r->first); i < observations_.size() && n < kFullLengthCap; ++i) {
         if (observations_[i].iteration > r->second) break;
         // Nor, for the same reason as the maximum, one seen longer than it.
         if (std::abs(observations_[i].Length() - max_length_) > kFullLengthTolerance) continue;
         sum += observations_[i].Length();
+        if (n == 0) capped_from_ = observations_[i].iteration;
         ++n;
+      }
+      if (r == full_ranges_.rbegin() && n == kFullLengthCap) {
+        capped_ = true;
+        capped_first_ = r->first;
       }
     }
     // With the sightings dropped (bounded memory) the mean they gave stands.
@@ -194,9 +203,16 @@ void RltPlane::MarkFull(int64_t first, int64_t last) {
   bool merged = false;
   for (auto& range : full_ranges_) {
     if (first <= range.second + 1 && last + 1 >= range.first) {
+      const int64_t old_first = range.first;
       range.first = std::min(range.first, first);
       range.second = std::max(range.second, last);
       merged = true;
+      // The newest range grown at its end only, when the full length was taken from its
+      // first sightings alone (all still stored): those are the same, and so is the length.
+      if (!full_dirty_ && capped_ && &range == &full_ranges_.back() && range.first == old_first &&
+          old_first == capped_first_ && observations_.front().iteration <= capped_from_) {
+        return;
+      }
       break;
     }
   }

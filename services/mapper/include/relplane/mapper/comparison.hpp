@@ -81,6 +81,9 @@ struct SubInterval {
   StaticVerdict verdict;
 };
 
+// The terms of one observation (RltPlane keeps them with its observations).
+ObservationTerms ComparisonTerms(const Observation& obs);
+
 class Comparison {
  public:
   Comparison(int64_t a, int64_t b) : a_(a), b_(b) {}
@@ -95,12 +98,14 @@ class Comparison {
   int64_t B() const { return b_; }
   int64_t Other(int64_t id) const { return id == a_ ? b_ : a_; }
   // The other plane as seen from plane `from` (which must be A() or B()).
-  const DirectedStats& From(int64_t from) const { return from == a_ ? total_[0] : total_[1]; }
+  const DirectedStats& From(int64_t from) const {
+    return from == a_ ? sums_.total[0] : sums_.total[1];
+  }
   // Frame angle of the other plane minus that of `from`: the orientation difference averaged
   // over the common interval, each iteration weighted by how well both fits fix it.
   double DeltaAlpha(int64_t from) const { return from == a_ ? delta_alpha_ : -delta_alpha_; }
   // Information (rad^-2) of DeltaAlpha: the sum of the iterations' weights.
-  double Information() const { return information_; }
+  double Information() const { return sums_.information; }
   // The orientation difference and its information with each fit's bias over its length added
   // to each iteration's variance: a short piece's fit is off by up to a few centimetres over its
   // length (a piece beside a jamb takes some of the jamb's points), which its noise alone does
@@ -108,47 +113,51 @@ class Comparison {
   // be its pieces' bias alone, whatever the length of its interval (a comparison of two walls
   // over 5 iterations weighed as one over 500).
   double PieceAlpha(int64_t from) const { return from == a_ ? piece_alpha_ : -piece_alpha_; }
-  double PieceInformation() const { return piece_information_; }
+  double PieceInformation() const { return sums_.piece_information; }
   // Iterations in the common interval so far.
-  double Common() const { return common_; }
+  double Common() const { return sums_.n; }
   // Sub-intervals dropped as ambiguous (§II.C parallel planes) so far.
-  int Ambiguous() const { return ambiguous_; }
+  int Ambiguous() const { return sums_.ambiguous; }
 
  private:
   void Rebuild(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options,
                int max_gap);
   void Summarise(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options);
+  struct Sums;
+  // Adds sub-interval `s` (judged now if it was not since it changed) to `sums`.
+  static void AddTo(SubInterval& s, const ComparisonOptions& options, Sums* sums);
 
   int64_t a_;
   int64_t b_;
+  // Sums over sub-intervals (each one's verdict and orientation sums), added in their order.
+  struct Sums {
+    DirectedStats total[2];
+    double n = 0.0;
+    double wsin = 0.0;
+    double wcos = 0.0;
+    double information = 0.0;
+    double psin = 0.0;
+    double pcos = 0.0;
+    double piece_information = 0.0;
+    int ambiguous = 0;
+  };
   // Frozen sub-intervals are folded into these sums and never recomputed (bounded cost).
-  DirectedStats frozen_[2];
-  double frozen_n_ = 0.0;
-  double frozen_wsin_ = 0.0;
-  double frozen_wcos_ = 0.0;
-  double frozen_information_ = 0.0;
-  double frozen_psin_ = 0.0;
-  double frozen_pcos_ = 0.0;
-  double frozen_piece_information_ = 0.0;
-  int frozen_ambiguous_ = 0;
+  Sums frozen_;
   int64_t frozen_until_ = INT64_MIN;
   std::vector<SubInterval> open_;
+  // The frozen sums plus those of the first `prefix_count_` open sub-intervals, kept while
+  // those sub-intervals stay as they are: only the last one grows at an iteration, and adding
+  // up every open one again at every update cost a tenth of the comparisons' time.
+  Sums prefix_;
+  size_t prefix_count_ = 0;
   int64_t processed_until_ = INT64_MIN;
   int64_t phase_seen_a_ = INT64_MIN;  // latest phase start of each plane at the last update
   int64_t phase_seen_b_ = INT64_MIN;
-  DirectedStats total_[2];
-  double wsin_sum_ = 0.0;
-  double wcos_sum_ = 0.0;
-  double information_ = 0.0;
-  double psin_sum_ = 0.0;
-  double pcos_sum_ = 0.0;
-  double piece_information_ = 0.0;
-  // atan2 of the sums above, worked out once per update: the relative maps ask for them for
-  // every pairing of every build.
+  Sums sums_;  // over the whole common interval
+  // atan2 of the orientation sums, worked out once per update: the relative maps ask for them
+  // for every pairing of every build.
   double delta_alpha_ = 0.0;
   double piece_alpha_ = 0.0;
-  double common_ = 0.0;
-  int ambiguous_ = 0;
 };
 
 }  // namespace relplane::mapper

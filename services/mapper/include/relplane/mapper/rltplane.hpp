@@ -2,6 +2,7 @@
 // The rltplane (Fig. 1): one wall's untransformed observations by iteration, plus what the
 // pairwise comparisons learn about it (growth phases, static edges, full length).
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cstdint>
 #include <deque>
@@ -13,6 +14,15 @@
 
 namespace relplane::mapper {
 
+// What every comparison an observation is in needs of it alone (§II.C), worked out once when it
+// is stored: with 30 walls in view each observation is in some 30 comparisons.
+struct ObservationTerms {
+  double alpha = 0.0;                                        // Observation::Alpha()
+  Eigen::Matrix2d rotation_t = Eigen::Matrix2d::Identity();  // R(alpha)^T
+  double weight = 0.0;                                       // OrientationWeight
+  double blur = 0.0;  // its fit's bias over its length (comparison.cpp)
+};
+
 class RltPlane {
  public:
   RltPlane(int64_t id, Observation first, double phase_hysteresis, int max_observations);
@@ -23,6 +33,8 @@ class RltPlane {
 
   const std::deque<Observation>& Observations() const { return observations_; }
   const Observation& Latest() const { return observations_.back(); }
+  // The terms of Observations()[i].
+  const ObservationTerms& Terms(size_t i) const { return terms_[i]; }
   int64_t FirstSeen() const { return first_seen_; }
   int64_t LastSeen() const { return observations_.back().iteration; }
   int64_t Count() const { return count_; }
@@ -80,6 +92,7 @@ class RltPlane {
   double hysteresis_;
   size_t max_observations_;
   std::deque<Observation> observations_;
+  std::deque<ObservationTerms> terms_;  // one per observation
   int64_t first_seen_;
   int64_t count_ = 0;
   double max_length_ = 0.0;
@@ -87,6 +100,13 @@ class RltPlane {
   mutable double full_length_ = 0.0;  // computed lazily from full_ranges_
   mutable bool full_dirty_ = false;
   mutable bool full_valid_ = false;  // full_length_ was computed from stored sightings
+  // When full_length_ was last computed: the newest range alone gave it its sightings (the
+  // first kFullLengthCap of them from `capped_from_`, the first one counted), starting at
+  // `capped_first_`. A range that only grows at its end, as the one seen whole now does at
+  // every iteration, then leaves it as it is.
+  mutable bool capped_ = false;
+  mutable int64_t capped_first_ = 0;
+  mutable int64_t capped_from_ = 0;
   double z_min_;
   double z_max_;
   // Growth tracking: phase starts (iteration, first of the phase), current trend and extreme.
