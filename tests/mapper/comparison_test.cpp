@@ -1,12 +1,14 @@
 // §II.C pairwise comparison on hand-built observation sequences, checked against the geometry
 // the sequences were built from.
+#include "relplane/mapper/comparison.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "ideal_segmenter.hpp"
 #include "relplane/common/geometry.hpp"
-#include "relplane/mapper/comparison.hpp"
+#include "relplane/mapper/localisation.hpp"
 #include "relplane/mapper/observation.hpp"
 #include "relplane/mapper/rltplane.hpp"
 
@@ -264,6 +266,48 @@ TEST(Comparison, AnIterationWithAPoorFitCountsForLittleInTheOrientation) {
   const double exact = b.Latest().Alpha() - a.Latest().Alpha();
   EXPECT_NEAR(geometry::WrapAngle(c.DeltaAlpha(0) - exact), 0.0, 0.002);
   EXPECT_NEAR(geometry::WrapAngle(c.DeltaAlpha(1) + exact), 0.0, 0.002);
+}
+
+TEST(RltPlane, BestOrientationWeightIsThatOfTheStoredObservations) {
+  // The weight is kept as observations are added and dropped (a sliding-window maximum): it
+  // must be the largest weight among those stored, not among all ever seen. The fit quality
+  // goes up and down so the best one is dropped again and again.
+  RltPlane plane(0, See({0, 0, 0}, kEnd0, kEnd1, 0, 2, 0), 0.05, 16);  // 16 kept
+  for (int k = 1; k < 200; ++k) {
+    Observation obs = See({0.01 * k, 0, 0}, kEnd0, kEnd1, 0, 2, k);
+    obs.support = 500 + (k * 37) % 400;
+    obs.rms = 0.002 + 0.001 * ((k * 13) % 7);
+    plane.Add(obs);
+    double best = 0.0;
+    for (const Observation& o : plane.Observations()) best = std::max(best, OrientationWeight(o));
+    ASSERT_EQ(OrientationWeight(plane), best) << "iteration " << k;
+  }
+}
+
+TEST(RltPlane, FullLengthKeptWhileItsRangeGrowsIsTheOneWorkedOutAfresh) {
+  // Length() is not worked out again while the range seen whole only grows at its end and the
+  // length came from that range's first sightings alone. Two planes with the same sightings:
+  // one asked at every iteration (kept values), one only at the end (worked out once). With
+  // sightings dropped (400 kept of 700) the kept value must follow, as the fresh one does.
+  const auto sighting = [](int k) {
+    const double noise = 0.004 * std::sin(0.7 * k) + 0.003 * std::cos(1.3 * k);
+    return See({0.01 * k, 0, 0}, kEnd0, kEnd1, 0, 2 + noise, k);
+  };
+  RltPlane asked(0, sighting(0), 0.05, 400), fresh(0, sighting(0), 0.05, 400);
+  for (int k = 1; k < 700; ++k) {
+    asked.Add(sighting(k));
+    fresh.Add(sighting(k));
+    asked.MarkFull(0, k);
+    fresh.MarkFull(0, k);
+    const double kept = asked.Length();
+    if (k % 50 == 0 || k == 699) {
+      RltPlane once(0, sighting(0), 0.05, 400);
+      for (int q = 1; q <= k; ++q) once.Add(sighting(q));
+      once.MarkFull(0, k);
+      ASSERT_EQ(kept, once.Length()) << "iteration " << k;
+    }
+  }
+  EXPECT_EQ(asked.Length(), fresh.Length());
 }
 
 }  // namespace
