@@ -31,7 +31,9 @@ bool Turning(const geometry::Pose2& from, const geometry::Pose2& to, int64_t ite
 
 int MarkViewCuts(const LearnedFrustum& frustum, MapperState& state) {
   int marked = 0;
-  for (auto& [id, plane] : state.planes) {
+  for (auto& entry : state.planes) {
+    const int64_t id = entry.first;
+    RltPlane& plane = entry.second;  // named, not a structured binding: the lambda below uses it
     const auto& all = plane.Observations();
     std::set<int64_t> changed;  // iterations with a newly cut edge
     for (size_t i = 0; i < all.size(); ++i) {
