@@ -20,6 +20,8 @@ MapperOptions ReadMapperOptions(Reader& r) {
   start.Read("yaw", &o.start_pose.yaw);
   r.Read("max_observations", &o.max_observations);
   if (o.max_observations < 16) r.Fail("max_observations", "must be at least 16");
+  r.Read("corner_radius", &o.corner_radius);
+  if (!(o.corner_radius >= 0.0)) r.Fail("corner_radius", "must be 0 (off) or positive");
 
   Reader reg = r.Child("registration");
   reg.Read("last_seen_window", &o.registration.last_seen_window);

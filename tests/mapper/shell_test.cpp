@@ -70,14 +70,17 @@ TEST(Convert, PoseAndMapMessages) {
 TEST(Options, ReadsTheSectionAndRefusesUnknownKeys) {
   const std::string file = ::testing::TempDir() + "mapper_options.yaml";
   std::ofstream(file) << "name: x\nmapper:\n  start_pose: {x: 1, y: 2, z: 1.0, yaw: 0.5}\n"
-                         "  grouping: {min_observations: 5}\n";
+                         "  grouping: {min_observations: 5}\n  corner_radius: 0.05\n";
   const MapperOptions o = LoadMapperOptions(file);
+  EXPECT_DOUBLE_EQ(o.corner_radius, 0.05);
   EXPECT_DOUBLE_EQ(o.start_pose.z, 1.0);
   EXPECT_DOUBLE_EQ(o.start_pose.yaw, 0.5);
   EXPECT_EQ(o.grouping.min_observations, 5);
   std::ofstream(file) << "mapper:\n  grouping: {min_observatons: 5}\n";
   EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
   std::ofstream(file) << "mapper:\n  comparison: {static_std: -1}\n";
+  EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
+  std::ofstream(file) << "mapper:\n  corner_radius: -0.1\n";
   EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
   std::remove(file.c_str());
 }

@@ -10,6 +10,7 @@
 #include "relplane/mapper/global_map.hpp"
 #include "relplane/mapper/grouping.hpp"
 #include "relplane/mapper/map_cleanup.hpp"
+#include "relplane/mapper/map_corners.hpp"
 #include "relplane/mapper/registration.hpp"
 #include "relplane/mapper/regrouping.hpp"
 #include "relplane/mapper/relative_map.hpp"
@@ -366,6 +367,7 @@ MapSnapshot Mapper::Map() const {
     snapshot.planes.push_back(std::move(m));
   }
   MergeDuplicateWalls(&snapshot.planes);  // §II.D end
+  SnapEndsToCorners(&snapshot.planes, options_.corner_radius);  // §II.D end
   for (const Group& g : state_.groups) {
     snapshot.groups.push_back({g.id, g.relative.basis, g.members});
   }

@@ -100,6 +100,9 @@ struct MapperOptions {
   RegroupingOptions regrouping;
   StartPose start_pose;
   int max_observations = 3000;  // per rltplane, a hard cap besides the regrouping horizon
+  // m: the published map draws a wall's end at the corner it meets when the crossing wall's
+  // line passes this close (SnapEndsToCorners; about a ray spacing at the range limit); 0: off.
+  double corner_radius = 0.1;
 };
 
 }  // namespace relplane::mapper
