@@ -305,6 +305,16 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
     // along the hallway).
     const SeenWall& fixed = SeenFromFixedPose(state, g, id);
     if (fixed.valid && fixed.cut[rel.ref]) continue;
+    // Nor one far from where the fixed poses have seen that end since (their median): with none
+    // seen before, one sighting is all MemberShowsEnd has, and a partition's edge seen once
+    // 0.45 m into the door beside it (its pieces joined over the lintel) put an office's door
+    // frame, and every room after it, 0.44 m along the partition.
+    const SeenWall since = EndSeenFromFixedPoses(state, *state.Plane(id), rel.ref);
+    if (since.valid && std::abs(DirectionOf(seen.alpha).dot(since.edge[rel.ref] -
+                                                            seen.edge[rel.ref])) >
+                           kFirstEndAgreement) {
+      continue;
+    }
     latest = seen.iteration;
     prior = PlacementFromSighting(seen, rel);
   }
