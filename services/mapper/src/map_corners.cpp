@@ -23,43 +23,33 @@ constexpr double kMinShortenedRadii = 2.0;
 // middle is not its corner (a door jamb crossing a thin partition's line at the door).
 constexpr double kMaxShortenedFraction = 0.25;
 
-Vector2d End(const MappedPlane& m, int e) { return m.vertices[e].head<2>(); }
-
-bool IsWall(const MappedPlane& m) {
-  return m.vertices.size() == 4 && m.normal.head<2>().norm() > 0.9;
-}
-
-// The unit direction lo -> hi (along the line, either way, for a wall drawn as a point).
-Vector2d DirectionOf(const MappedPlane& m) {
-  const Vector2d span = End(m, 1) - End(m, 0);
+// The unit direction end[0] -> end[1] (along the line, either way, for a wall seen as a point).
+Vector2d DirectionOf(const WallSegment& w) {
+  const Vector2d span = w.end[1] - w.end[0];
   if (span.norm() > 1e-9) return span.normalized();
-  const Vector2d n = m.normal.head<2>().normalized();
-  return {-n.y(), n.x()};
+  return {-w.normal.y(), w.normal.x()};
 }
 
 // Where `wall`'s end `e` meets `other`'s line, as the signed distance along `wall`'s direction
 // from that end; false when the walls are near parallel, the line is farther than `radius` or
 // `other` does not reach the point (to within `radius`: its own end is sampled short too).
-bool MeetingOffset(const MappedPlane& wall, int e, const MappedPlane& other, double radius,
+bool MeetingOffset(const WallSegment& wall, int e, const WallSegment& other, double radius,
                    double* along) {
   const Vector2d t = DirectionOf(wall);
-  const double norm = other.normal.head<2>().norm();
-  const Vector2d n = other.normal.head<2>() / norm;
-  const double sine = n.dot(t);
+  const double sine = other.normal.dot(t);
   if (std::abs(sine) < kMinCornerSine) return false;
-  const Vector2d p = End(wall, e);
-  // other's line: n . x + d = 0 for the unit 2D normal (d belongs to the 3D normal).
-  *along = -(n.dot(p) + other.d / norm) / sine;
+  const Vector2d& p = wall.end[e];
+  *along = -(other.normal.dot(p) + other.d) / sine;
   if (std::abs(*along) > radius) return false;
   const Vector2d u = DirectionOf(other);
   const double s = u.dot(p + *along * t);
-  const double s0 = u.dot(End(other, 0)), s1 = u.dot(End(other, 1));
+  const double s0 = u.dot(other.end[0]), s1 = u.dot(other.end[1]);
   return s >= std::min(s0, s1) - radius && s <= std::max(s0, s1) + radius;
 }
 
 }  // namespace
 
-int SnapEndsToCorners(std::vector<MappedPlane>* planes, double radius) {
+int SnapSegmentEnds(std::vector<WallSegment>* walls, double radius) {
   if (!(radius > 0.0)) return 0;
   struct Move {
     size_t wall;
@@ -67,18 +57,14 @@ int SnapEndsToCorners(std::vector<MappedPlane>* planes, double radius) {
     Vector2d step;
   };
   std::vector<Move> moves;
-  for (size_t i = 0; i < planes->size(); ++i) {
-    const MappedPlane& wall = (*planes)[i];
-    if (!IsWall(wall)) continue;
-    const double length = (End(wall, 1) - End(wall, 0)).norm();
+  for (size_t i = 0; i < walls->size(); ++i) {
+    const WallSegment& wall = (*walls)[i];
+    const double length = (wall.end[1] - wall.end[0]).norm();
     for (int e = 0; e < 2; ++e) {
       double best = std::numeric_limits<double>::infinity();
-      for (size_t j = 0; j < planes->size(); ++j) {
+      for (size_t j = 0; j < walls->size(); ++j) {
         double along = 0.0;
-        if (j == i || !IsWall((*planes)[j]) ||
-            !MeetingOffset(wall, e, (*planes)[j], radius, &along)) {
-          continue;
-        }
+        if (j == i || !MeetingOffset(wall, e, (*walls)[j], radius, &along)) continue;
         const bool shortens = e == 0 ? along > 0.0 : along < 0.0;
         if (shortens && (length < kMinShortenedRadii * radius ||
                          std::abs(along) > kMaxShortenedFraction * length)) {
@@ -89,16 +75,34 @@ int SnapEndsToCorners(std::vector<MappedPlane>* planes, double radius) {
       if (std::isfinite(best)) moves.push_back({i, e, best * DirectionOf(wall)});
     }
   }
-  for (const Move& move : moves) {
-    MappedPlane& wall = (*planes)[move.wall];
-    // Mapper::Map's order: lo bottom, hi bottom, hi top, lo top.
-    const int bottom = move.end == 0 ? 0 : 1, top = move.end == 0 ? 3 : 2;
-    wall.vertices[bottom].head<2>() += move.step;
-    wall.vertices[top].head<2>() += move.step;
-    wall.centroid.head<2>() = 0.5 * (End(wall, 0) + End(wall, 1));
-  }
+  for (const Move& move : moves) (*walls)[move.wall].end[move.end] += move.step;
   return static_cast<int>(moves.size());
 }
 
-}  // namespace relplane::mapper
+int SnapEndsToCorners(std::vector<MappedPlane>* planes, double radius) {
+  std::vector<WallSegment> walls;
+  std::vector<size_t> index;  // planes[index[k]] is walls[k]
+  for (size_t i = 0; i < planes->size(); ++i) {
+    const MappedPlane& m = (*planes)[i];
+    const double norm = m.normal.head<2>().norm();
+    if (m.vertices.size() != 4 || norm < 0.9) continue;
+    WallSegment w;
+    w.normal = m.normal.head<2>() / norm;
+    w.d = m.d / norm;  // d belongs to the 3D unit normal
+    w.end[0] = m.vertices[0].head<2>();
+    w.end[1] = m.vertices[1].head<2>();
+    walls.push_back(w);
+    index.push_back(i);
+  }
+  const int moved = SnapSegmentEnds(&walls, radius);
+  for (size_t k = 0; k < walls.size(); ++k) {
+    MappedPlane& m = (*planes)[index[k]];
+    // Mapper::Map's order: lo bottom, hi bottom, hi top, lo top.
+    m.vertices[0].head<2>() = m.vertices[3].head<2>() = walls[k].end[0];
+    m.vertices[1].head<2>() = m.vertices[2].head<2>() = walls[k].end[1];
+    m.centroid.head<2>() = 0.5 * (walls[k].end[0] + walls[k].end[1]);
+  }
+  return moved;
+}
 
+}  // namespace relplane::mapper
