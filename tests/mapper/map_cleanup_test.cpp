@@ -39,6 +39,20 @@ bool Kept(const std::vector<MappedPlane>& planes, int64_t id) {
   return std::any_of(planes.begin(), planes.end(), [id](const MappedPlane& m) { return m.id == id; });
 }
 
+TEST(MapCleanup, ASliverBesideADiagonalWallsEndIsTheWall) {
+  // 45 degrees: a 2 cm sliver 9 cm across the wall's line and 7-9 cm past its end lies
+  // 0.11-0.13 m outside the wall's box in y (the nearby walls are looked up by their boxes, on
+  // a grid with a cell border at y = 4).
+  const Vector2d t = Vector2d(1, 1).normalized(), n(-t.y(), t.x());
+  const Vector2d b = Vector2d(3.89, 3.89);  // its box widened by 0.1 m stops short of y = 4
+  const Vector2d across = 0.09 * n;
+  std::vector<MappedPlane> planes = {Mapped(1, {0, 0}, b, 200),
+                                     Mapped(2, b + 0.07 * t + across, b + 0.09 * t + across, 14)};
+  MergeDuplicateWalls(&planes);
+  EXPECT_TRUE(Kept(planes, 1));
+  EXPECT_FALSE(Kept(planes, 2));
+}
+
 TEST(MapCleanup, AShortPieceInsideAWallIsTheWallWhateverItsFitsTurn) {
   // A 0.2 m sliver of the wall beside a door jamb, its fit 7 degrees off (the jamb's points):
   // its ends lie within 1.3 cm of the wall's line.

@@ -20,8 +20,8 @@ MappedPlane Mapped(int64_t id, const Vector2d& lo, const Vector2d& hi) {
   const Vector2d t = (hi - lo).normalized();
   m.normal = Eigen::Vector3d(-t.y(), t.x(), 0.0);
   m.d = -m.normal.head<2>().dot(lo);
-  m.vertices = {{lo.x(), lo.y(), 0.0}, {hi.x(), hi.y(), 0.0}, {hi.x(), hi.y(), 2.5},
-                {lo.x(), lo.y(), 2.5}};
+  m.vertices = {
+      {lo.x(), lo.y(), 0.0}, {hi.x(), hi.y(), 0.0}, {hi.x(), hi.y(), 2.5}, {lo.x(), lo.y(), 2.5}};
   const Vector2d mid = 0.5 * (lo + hi);
   m.centroid = Eigen::Vector3d(mid.x(), mid.y(), 1.25);
   return m;

@@ -74,7 +74,8 @@ PipelineResult RunScenario(const std::string& name, double sigma = -1.0, uint64_
   }
   eval::MapSnapshot world, map;
   for (const sim::TruePlane& p : simulation.TruePlanes()) {
-    world.planes.push_back(Record(p.id, p.normal, p.d, p.centroid, {p.corners.begin(), p.corners.end()}));
+    world.planes.push_back(
+        Record(p.id, p.normal, p.d, p.centroid, {p.corners.begin(), p.corners.end()}));
   }
   for (const mapper::MappedPlane& p : mapper.Map().planes) {
     map.planes.push_back(Record(p.id, p.normal, p.d, p.centroid, p.vertices));

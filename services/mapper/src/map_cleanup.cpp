@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "box_grid.hpp"
+
 namespace relplane::mapper {
 namespace {
 
@@ -11,6 +13,7 @@ using Eigen::Vector2d;
 
 constexpr double kMergeAngle = 0.05;    // rad
 constexpr double kMergeDistance = 0.1;  // m
+constexpr double kGridCell = 2.0;       // m
 
 Vector2d End(const MappedPlane& m, int e) { return m.vertices[e].head<2>(); }
 
@@ -91,9 +94,22 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
     for (int e = 0; e < 2; ++e) in = in && t.dot(End(a, e)) >= s0 && t.dot(End(a, e)) <= s1;
     return in;
   };
+  // b holds a only if a's ends lie within kMergeDistance of b's line and of b's extent along
+  // it, so within b's box widened by twice that (a diagonal wall's box corners).
+  const auto box_of = [](const MappedPlane& m, double margin) {
+    Eigen::AlignedBox2d box(End(m, 0));
+    box.extend(End(m, 1));
+    return Eigen::AlignedBox2d(box.min() - Vector2d::Constant(margin),
+                               box.max() + Vector2d::Constant(margin));
+  };
+  BoxGrid grid(kGridCell);
+  for (size_t j = 0; j < planes.size(); ++j) {
+    grid.Insert(j, box_of(planes[j], 2.0 * kMergeDistance));
+  }
   for (size_t i = 0; i < planes.size(); ++i) {
     const MappedPlane& a = planes[i];
-    for (size_t j = 0; j < planes.size() && !drop[i]; ++j) {
+    for (size_t j : grid.Query(box_of(a, 0.0))) {
+      if (drop[i]) break;
       const MappedPlane& b = planes[j];
       if (i == j || drop[j] || !inside(a, b)) continue;
       const bool a_better =

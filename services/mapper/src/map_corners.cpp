@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "box_grid.hpp"
+
 namespace relplane::mapper {
 namespace {
 
@@ -22,6 +24,8 @@ constexpr double kMinShortenedRadii = 2.0;
 // ... and by at most this fraction of their length, from each end: a line through a wall's
 // middle is not its corner (a door jamb crossing a thin partition's line at the door).
 constexpr double kMaxShortenedFraction = 0.25;
+
+constexpr double kGridCell = 2.0;  // m
 
 // The unit direction end[0] -> end[1] (along the line, either way, for a wall seen as a point).
 Vector2d DirectionOf(const WallSegment& w) {
@@ -56,13 +60,22 @@ int SnapSegmentEnds(std::vector<WallSegment>* walls, double radius) {
     int end;
     Vector2d step;
   };
+  // A crossing wall reaches within `radius` of a meeting point within `radius` of the end.
+  BoxGrid grid(kGridCell);
+  for (size_t i = 0; i < walls->size(); ++i) {
+    Eigen::AlignedBox2d box((*walls)[i].end[0]);
+    box.extend((*walls)[i].end[1]);
+    const Vector2d reach = Vector2d::Constant(radius);
+    grid.Insert(i, Eigen::AlignedBox2d(box.min() - reach, box.max() + reach));
+  }
   std::vector<Move> moves;
   for (size_t i = 0; i < walls->size(); ++i) {
     const WallSegment& wall = (*walls)[i];
     const double length = (wall.end[1] - wall.end[0]).norm();
     for (int e = 0; e < 2; ++e) {
       double best = std::numeric_limits<double>::infinity();
-      for (size_t j = 0; j < walls->size(); ++j) {
+      const Vector2d reach = Vector2d::Constant(radius);
+      for (size_t j : grid.Query(Eigen::AlignedBox2d(wall.end[e] - reach, wall.end[e] + reach))) {
         double along = 0.0;
         if (j == i || !MeetingOffset(wall, e, (*walls)[j], radius, &along)) continue;
         const bool shortens = e == 0 ? along > 0.0 : along < 0.0;
