@@ -400,16 +400,12 @@ TEST(GlobalMap, AGroupMadeWhileTheMotionModelCarriedThePoseIsPlacedFromTheEndsSe
   ExpectSidesSeenSincePlacedAtTheirEnds(&state, 4, 3.0, false, 5, 9, 6);
 }
 
-TEST(GlobalMap, AcrossItsBasisAGroupsPriorIsTheBasissLineNotAnEndSeenAtAGlancingAngle) {
-  // Driving along x at 0.1 m an iteration, the walls fixing the pose. Group 0 mapped the
-  // hallway's right side (y = -1). Group 1, made at iteration 6, has as basis the end wall
-  // x = 4, seen square on and known by its line, and knows the far end (x = 3, a recess) of the
-  // hallway's left side (y = 1); the right side is its one link, so its position along x is its
-  // prior's. Seen 2.5 m along the wall 1 m beside the sensor, the left side's end is the last
-  // ray that met it, 4 cm short of the end (x = 2.96) in both sightings. Across the basis the
-  // prior must come from the end wall's line, not put the group 4 cm short (§II.C: an end is
-  // fixed to a ray's spacing, a line by all its points; on loop_other_sensor a pilaster's group
-  // was put 4 to 8 cm along the hallway).
+// Driving along x at 0.1 m an iteration, the walls fixing the pose: the end wall x = 4 (plane 0)
+// seen square on, the hallway's left side y = 1 (plane 1), and its right side y = -1 (plane 2),
+// which group 0 mapped by its line. Seen 2.5 m along the wall 1 m beside the sensor, the left
+// side's far end (x = 3, a recess) is the last ray that met it, 4 cm short of the end
+// (x = 2.96) in both sightings. Group 1, made at iteration 6, is added by the test.
+MapperState HallwayWithAnEndSeenShort() {
   const auto seen = SeenAlongX;
   MapperState state = DrivingAlongX(5, 5);
   RltPlane end(0, seen({4, -1}, {4, 1}, 0.4, 4), 0.05, 1000);
@@ -418,25 +414,61 @@ TEST(GlobalMap, AcrossItsBasisAGroupsPriorIsTheBasissLineNotAnEndSeenAtAGlancing
   left.Add(seen({-1, 1}, {2.96, 1}, 0.5, 5));
   RltPlane right(2, seen({-1, -1}, {3.5, -1}, 0.4, 4), 0.05, 1000);
   right.Add(seen({-1, -1}, {3.5, -1}, 0.5, 5));
-  const Placement end_line = Placed(end.Latest().Alpha(), {4, 0}, -1, Known::kLine);
-  const Placement left_end =
-      Placed(left.Latest().Alpha(), {3, 1}, FarEnd(left.Latest()), Known::kPoint);
-  const Placement right_line = Placed(right.Latest().Alpha(), {0, -1}, -1, Known::kLine);
   end.groups = {1};
   left.groups = {1};
   right.groups = {0, 1};
+  const Placement right_line = Placed(right.Latest().Alpha(), {0, -1}, -1, Known::kLine);
   state.planes.emplace(0, std::move(end));
   state.planes.emplace(1, std::move(left));
   state.planes.emplace(2, std::move(right));
-  state.groups = {Built(0, 0, {{2, right_line}}, 2),
-                  Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_line}}, 0)};
+  state.groups = {Built(0, 0, {{2, right_line}}, 2)};
   state.global = {{2, right_line}};
   state.placed_by = {{2, 0}};
-  BuildGlobalMap(state, 1, MapperOptions{});
+  return state;
+}
+
+// The end wall and the left side's far end as HallwayWithAnEndSeenShort's group 1 placed them.
+void ExpectEndWallAndLeftEndWhereTheyAre(const MapperState& state) {
   ASSERT_TRUE(state.global.count(0) && state.global.count(1));
   const Placement& placed = state.global.at(0);
   EXPECT_NEAR(std::abs(NormalOf(placed.alpha).dot(placed.point)), 4.0, 1e-6);
   EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-6);
+  EXPECT_NEAR(state.global.at(1).point.y(), 1.0, 1e-6);
+}
+
+TEST(GlobalMap, AcrossItsBasisAGroupsPriorIsTheBasissLineNotAnEndSeenAtAGlancingAngle) {
+  // Group 1's basis is the end wall, known by its line, and it knows the left side's far end;
+  // the right side is its one link, so its position along x is its prior's. Across the basis
+  // the prior must come from the end wall's line, not put the group 4 cm short (§II.C: an end
+  // is fixed to a ray's spacing, a line by all its points; on loop_other_sensor a pilaster's
+  // group was put 4 to 8 cm along the hallway).
+  MapperState state = HallwayWithAnEndSeenShort();
+  const auto alpha = [&](int64_t id) { return state.Plane(id)->Latest().Alpha(); };
+  const Placement end_line = Placed(alpha(0), {4, 0}, -1, Known::kLine);
+  const Placement left_end =
+      Placed(alpha(1), {3, 1}, FarEnd(state.Plane(1)->Latest()), Known::kPoint);
+  const Placement right_line = Placed(alpha(2), {0, -1}, -1, Known::kLine);
+  state.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_line}}, 0));
+  BuildGlobalMap(state, 1, MapperOptions{});
+  ExpectEndWallAndLeftEndWhereTheyAre(state);
+}
+
+TEST(GlobalMap, AGroupsPriorTakesEveryMembersLineNotOnlyTheBasiss) {
+  // Group 1's basis is the left side, known by the far end seen short, and the end wall is
+  // another member known by its line. The right side links group 1 by its orientation only, so
+  // both directions of its position are its prior's. Along x the prior must come from the end
+  // wall's line, not the left side's end (an office's last room moved 8 cm across its outer wall
+  // when its basis changed from that wall to the partition beside it).
+  MapperState state = HallwayWithAnEndSeenShort();
+  const auto alpha = [&](int64_t id) { return state.Plane(id)->Latest().Alpha(); };
+  // Group 1's frame: the left side's far end at the origin.
+  const Placement left_end =
+      Placed(alpha(1), {0, 0}, FarEnd(state.Plane(1)->Latest()), Known::kPoint);
+  const Placement end_line = Placed(alpha(0), {1, 0}, -1, Known::kLine);
+  const Placement right_angle = Placed(alpha(2), {0, -2}, -1, Known::kAngle);
+  state.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_angle}}, 1));
+  BuildGlobalMap(state, 1, MapperOptions{});
+  ExpectEndWallAndLeftEndWhereTheyAre(state);
 }
 
 TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {

@@ -90,12 +90,19 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
       break;
     }
   }
-  // The prior only decides a direction the links leave open; across the basis, its line as seen
-  // with the heading the links give.
+  // The prior only decides a direction the links leave open; along the directions its members'
+  // lines span, those lines as seen with the heading the links give, its ends' placement along
+  // the rest.
   Vector2d prior_t = prior.Translation();
-  if (prior_in.has_line) {
-    const Vector2d n = NormalOf(yaw + prior_in.basis.alpha);
-    prior_t += n * n.dot(prior_in.seen_point - prior_t - rot * prior_in.basis.point);
+  if (!prior_in.lines.empty()) {
+    Matrix2d la = Matrix2d::Zero();
+    Vector2d lb = Vector2d::Zero();
+    for (const PriorLine& line : prior_in.lines) {
+      const Vector2d n = NormalOf(yaw + line.member.alpha);
+      la += n * n.transpose();
+      lb += n * n.dot(line.seen_point - rot * line.member.point);
+    }
+    prior_t = SolveWithPrior(la, lb, prior_t, 0.0, 0.0);
   }
   const Vector2d t = SolveWithPrior(a, b, prior_t, prior_weight, 0.5);
   return {t.x(), t.y(), yaw};
@@ -250,7 +257,9 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
     // sighting is kept, not the frame.
     Prior prior;
     prior.pose = start;
-    if (state.Plane(group.relative.basis) != nullptr) prior = PriorWithBasisLine(state, g, options);
+    if (state.Plane(group.relative.basis) != nullptr) {
+      prior = PriorWithMemberLines(state, g, options);
+    }
     if (links.empty()) {
       // §II.D "the first grouping can be placed on the global map by comparing the relative
       // map coordinates of each rltplane to its first observation".

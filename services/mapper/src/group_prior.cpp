@@ -317,19 +317,20 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
 
 }  // namespace
 
-Prior PriorWithBasisLine(MapperState& state, size_t g, const MapperOptions& options) {
+Prior PriorWithMemberLines(MapperState& state, size_t g, const MapperOptions& options) {
   Prior prior;
   prior.pose = PriorPlacement(state, g, options);
   const RelativeMap& map = state.groups[g].relative;
-  const Placement& basis = map.members.at(map.basis);
-  if (basis.known == Known::kAngle) return prior;
-  // As PriorPlacement takes a line: from a fixed pose before the group was made where there is
-  // one (§II.E: the motion model's poses lag along open directions).
-  const SeenWall& fixed = SeenFromFixedPose(state, g, map.basis);
-  const SeenWall seen = fixed.valid ? fixed : SeenWhenMade(state, g, map.basis, options);
-  prior.has_line = true;
-  prior.seen_point = 0.5 * (seen.edge[0] + seen.edge[1]);
-  prior.basis = basis;
+  for (const auto& [id, member] : map.members) {
+    if (member.known == Known::kAngle) continue;
+    // As PriorPlacement takes a line: from a fixed pose before the group was made where there is
+    // one (§II.E: the motion model's poses lag along open directions); the basis, which the
+    // placement hangs on, as seen when the group was made otherwise.
+    const SeenWall& fixed = SeenFromFixedPose(state, g, id);
+    if (!fixed.valid && id != map.basis) continue;
+    const SeenWall seen = fixed.valid ? fixed : SeenWhenMade(state, g, id, options);
+    prior.lines.push_back({0.5 * (seen.edge[0] + seen.edge[1]), member});
+  }
   return prior;
 }
 

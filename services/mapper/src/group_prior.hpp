@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "relplane/common/geometry.hpp"
 #include "relplane/mapper/observation.hpp"
@@ -17,15 +18,18 @@ namespace relplane::mapper {
 // noise and the pose's drift since the start).
 constexpr double kFirstEndAgreement = 0.2;
 
-// A group's prior (§II.D): a placement, and the basis's line as seen around when the group was
-// made (when the basis is known by more than its orientation), with the basis's place in the
-// relative map.
+// One member's line in a group's prior: a point on it as seen around when the group was made,
+// in the world, and the member's place in the relative map.
+struct PriorLine {
+  Eigen::Vector2d seen_point = Eigen::Vector2d::Zero();
+  Placement member;
+};
+
+// A group's prior (§II.D): a placement, and the lines of the members known by more than their
+// orientation as seen around when the group was made, which decide every direction they span.
 struct Prior {
   geometry::Pose2 pose;
-  bool has_line = false;
-  Eigen::Vector2d seen_point =
-      Eigen::Vector2d::Zero();  // on the basis's line as seen, in the world
-  Placement basis;
+  std::vector<PriorLine> lines;
 };
 
 // The pose estimated at `iteration`, or the start pose when there is none.
@@ -42,13 +46,16 @@ geometry::Pose2 PoseAt(const MapperState& state, int64_t iteration, const Mapper
 // Falls back to the sighting when the group was made when fewer than two agree.
 SeenWall LineWhenMade(MapperState& state, size_t g, int64_t id, const MapperOptions& options);
 
-// PriorPlacement, with the basis's line as seen to decide the direction across the basis. A
-// wall's line is fitted to all its points, while an end is where the sensor's last ray met the
-// wall, short of it by up to the rays' spacing along the wall, which grows as they graze it
-// (§II.C). PriorPlacement's placement comes from one reference end, so across the basis it
-// carried that end's sampling error, or its sighting's heading error times the end's distance
-// from the basis: a pilaster's group on loop_other_sensor was put 4 cm, then 8 cm, along the
-// hallway, where the pilaster's face, seen square on, put it within 2 mm.
-Prior PriorWithBasisLine(MapperState& state, size_t g, const MapperOptions& options);
+// PriorPlacement, with its members' lines as seen to decide the directions they span. A wall's
+// line is fitted to all its points, while an end is where the sensor's last ray met the wall,
+// short of it by up to the rays' spacing along the wall, which grows as they graze it (§II.C).
+// PriorPlacement's placement comes from one reference end, so across the walls it carried that
+// end's sampling error, or its sighting's heading error times the end's distance from them: a
+// pilaster's group on loop_other_sensor was put 4 cm, then 8 cm, along the hallway, where the
+// pilaster's face, seen square on, put it within 2 mm. The basis's line alone left the other
+// direction to an end: an office's last room, linked to the rooms before by orientation only,
+// moved 8 cm across its outer wall when its basis changed from that wall to the partition
+// beside it, whose end, seen far off, was sampled short.
+Prior PriorWithMemberLines(MapperState& state, size_t g, const MapperOptions& options);
 
 }  // namespace relplane::mapper
