@@ -1,6 +1,6 @@
 // §II.D end, on the published map: a wall seen as a second rltplane lying inside another on the
-// same line is shown once; what "the same line" allows depends on how well
-// the piece's orientation is known, which is by its length.
+// same line, or sharing most of itself with it, is shown once; what "the same line" allows
+// depends on how well the piece's orientation is known, which is by its length.
 #include "relplane/mapper/map_cleanup.hpp"
 
 #include <gtest/gtest.h>
@@ -13,14 +13,15 @@ namespace {
 
 using Eigen::Vector2d;
 
-// A mapped wall from a to b (the normal on the left of a -> b), 2.5 m high.
+// A mapped wall from a to b (the normal on the left of a -> b), 2.5 m high. Its direction
+// (MappedPlane's lo -> hi) is b -> a.
 MappedPlane Mapped(int64_t id, const Vector2d& a, const Vector2d& b, int64_t observations) {
   MappedPlane m;
   m.id = id;
   const Vector2d t = (b - a).normalized();
   m.normal = Eigen::Vector3d(-t.y(), t.x(), 0.0);
   m.d = -m.normal.head<2>().dot(a);
-  m.vertices = {{a.x(), a.y(), 0.0}, {b.x(), b.y(), 0.0}, {b.x(), b.y(), 2.5}, {a.x(), a.y(), 2.5}};
+  m.vertices = {{b.x(), b.y(), 0.0}, {a.x(), a.y(), 0.0}, {a.x(), a.y(), 2.5}, {b.x(), b.y(), 2.5}};
   const Vector2d mid = 0.5 * (a + b);
   m.centroid = Eigen::Vector3d(mid.x(), mid.y(), 1.25);
   m.observations = observations;
@@ -36,7 +37,15 @@ MappedPlane Piece(int64_t id, double length, double degrees) {
 }
 
 bool Kept(const std::vector<MappedPlane>& planes, int64_t id) {
-  return std::any_of(planes.begin(), planes.end(), [id](const MappedPlane& m) { return m.id == id; });
+  return std::any_of(planes.begin(), planes.end(),
+                     [id](const MappedPlane& m) { return m.id == id; });
+}
+
+// Walls 1 and 2 both stay on the map.
+void ExpectBothStay(std::vector<MappedPlane> planes) {
+  MergeDuplicateWalls(&planes);
+  EXPECT_TRUE(Kept(planes, 1));
+  EXPECT_TRUE(Kept(planes, 2));
 }
 
 TEST(MapCleanup, ASliverBesideADiagonalWallsEndIsTheWall) {
@@ -84,20 +93,57 @@ TEST(MapCleanup, OfTwoWallsEachInsideTheOtherTheBetterObservedStays) {
 TEST(MapCleanup, ALongerPieceTurnedAsMuchIsAnotherWall) {
   // A 1.2 m piece is fitted to a tenth of a degree: 7 degrees off is not the same wall (its
   // ends are 7 cm either side of the line).
-  std::vector<MappedPlane> planes = {Mapped(1, {0, 2}, {5, 2}, 200), Piece(2, 1.2, 7.0)};
-  MergeDuplicateWalls(&planes);
-  EXPECT_TRUE(Kept(planes, 1));
-  EXPECT_TRUE(Kept(planes, 2));
+  ExpectBothStay({Mapped(1, {0, 2}, {5, 2}, 200), Piece(2, 1.2, 7.0)});
 }
 
 TEST(MapCleanup, ADoorJambAtTheWallStays) {
   // The jamb of a door in the wall (x = 3, 0.1 m deep across y = 2): perpendicular, so never
   // the same line however short.
-  std::vector<MappedPlane> planes = {Mapped(1, {0, 2}, {5, 2}, 200),
-                                     Mapped(2, {3, 1.95}, {3, 2.05}, 30)};
+  ExpectBothStay({Mapped(1, {0, 2}, {5, 2}, 200), Mapped(2, {3, 1.95}, {3, 2.05}, 30)});
+}
+
+// The wall of `id` among `planes` (which must hold it).
+const MappedPlane& Wall(const std::vector<MappedPlane>& planes, int64_t id) {
+  return *std::find_if(planes.begin(), planes.end(),
+                       [id](const MappedPlane& m) { return m.id == id; });
+}
+
+TEST(MapCleanup, TwoWallsSharingMostOfTheShorterAreOneWallOverBoth) {
+  // 3 m of the side wall y = 2 seen as two rltplanes 2 mm apart: the better-observed one
+  // stretches over the other's extent and takes its end there, unknown as it was.
+  MappedPlane other = Mapped(2, {1, 2.002}, {6, 2.002}, 50);
+  other.end_known[0] = false;  // x = 6
+  std::vector<MappedPlane> planes = {Mapped(1, {0, 2}, {4, 2}, 200), other};
   MergeDuplicateWalls(&planes);
-  EXPECT_TRUE(Kept(planes, 1));
-  EXPECT_TRUE(Kept(planes, 2));
+  ASSERT_EQ(planes.size(), 1u);
+  const MappedPlane& wall = Wall(planes, 1);
+  EXPECT_NEAR(wall.vertices[0].x(), 6.0, 1e-9);
+  EXPECT_NEAR(wall.vertices[1].x(), 0.0, 1e-9);
+  EXPECT_FALSE(wall.end_known[0]);
+  EXPECT_TRUE(wall.end_known[1]);
+  EXPECT_FALSE(wall.both_ends_known);
+  EXPECT_EQ(wall.observations, 250);
+}
+
+TEST(MapCleanup, ThreePiecesOfAWallEachSharingMostOfTheNextAreOne) {
+  // The last shares most of itself with the middle one, which the first stretches over.
+  std::vector<MappedPlane> planes = {Mapped(1, {0, 2}, {3, 2}, 200),
+                                     Mapped(2, {1.4, 2}, {4.4, 2}, 100),
+                                     Mapped(3, {3.2, 2}, {5, 2}, 50)};
+  MergeDuplicateWalls(&planes);
+  ASSERT_EQ(planes.size(), 1u);
+  EXPECT_NEAR(Wall(planes, 1).vertices[0].x(), 5.0, 1e-9);
+  EXPECT_NEAR(Wall(planes, 1).vertices[1].x(), 0.0, 1e-9);
+}
+
+TEST(MapCleanup, PiecesEitherSideOfADoorFrameReachingPastItStay) {
+  // Each reaches 0.2 m past the other's end, a small part of either.
+  ExpectBothStay({Mapped(1, {0, 2}, {3.1, 2}, 200), Mapped(2, {2.9, 2}, {6, 2}, 150)});
+}
+
+TEST(MapCleanup, APartitionsTwoFacesStay) {
+  // A thin partition seen from both sides: the same line, facing opposite ways.
+  ExpectBothStay({Mapped(1, {0, 2}, {4, 2}, 200), Mapped(2, {4.5, 2}, {0.5, 2}, 150)});
 }
 
 }  // namespace

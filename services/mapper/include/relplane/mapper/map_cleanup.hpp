@@ -9,9 +9,10 @@
 namespace relplane::mapper {
 
 // Drops a mapped wall lying inside another on the same line (of two each inside the other, the
-// better-observed one stays),
-// and joins a piece known only by its line (no end known) to the wall on the same line that it
-// may continue: that wall's facing end is not known and no other wall crosses the gap.
+// better-observed one stays), stretches the better-observed of two walls on the same line,
+// facing the same way, over the other where they share most of the shorter one, and joins a
+// piece known only by its line (no end known) to the wall on the same line that it may
+// continue: that wall's facing end is not known and no other wall crosses the gap.
 void MergeDuplicateWalls(std::vector<MappedPlane>* planes);
 
 }  // namespace relplane::mapper
