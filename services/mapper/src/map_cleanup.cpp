@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "box_grid.hpp"
 
@@ -106,9 +107,11 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
   for (size_t j = 0; j < planes.size(); ++j) {
     grid.Insert(j, box_of(planes[j], 2.0 * kMergeDistance));
   }
+  std::vector<std::vector<size_t>> near(planes.size());  // for the first round below
   for (size_t i = 0; i < planes.size(); ++i) {
     const MappedPlane& a = planes[i];
-    for (size_t j : grid.Query(box_of(a, 0.0))) {
+    near[i] = grid.Query(box_of(a, 0.0));
+    for (size_t j : near[i]) {
       if (drop[i]) break;
       const MappedPlane& b = planes[j];
       if (i == j || drop[j] || !inside(a, b)) continue;
@@ -124,21 +127,22 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
   // other's end where that reaches further (1.9 m of a noisy office's side wall was on the map
   // twice, 2 mm apart). Less than half shared is left alone: two pieces either side of a door
   // frame may reach a little past it.
-  for (bool changed = true; changed;) {
-    changed = false;
-    BoxGrid current(kGridCell);
-    for (size_t j = 0; j < planes.size(); ++j) {
-      if (!drop[j]) current.Insert(j, box_of(planes[j], 2.0 * kMergeDistance));
-    }
-    for (size_t i = 0; i < planes.size(); ++i) {
-      for (size_t j : current.Query(box_of(planes[i], 0.0))) {
+  // Walls stretched in one round are looked at again in the next, for walls they now share most
+  // of; the grid holds each under every box it has had (a superset, as Query's is).
+  std::vector<size_t> todo(planes.size());
+  std::iota(todo.begin(), todo.end(), size_t{0});
+  for (bool first = true; !todo.empty(); first = false) {
+    std::vector<size_t> stretched;
+    for (size_t i : todo) {
+      for (size_t j : first ? near[i] : grid.Query(box_of(planes[i], 0.0))) {
         if (drop[i]) break;
         if (j == i || drop[j] || !OnLine(planes[i], planes[j]) || !OnLine(planes[j], planes[i])) {
           continue;
         }
         const bool i_better = planes[i].observations > planes[j].observations ||
                               (planes[i].observations == planes[j].observations && i < j);
-        MappedPlane& keep = planes[i_better ? i : j];
+        const size_t k = i_better ? i : j;
+        MappedPlane& keep = planes[k];
         const MappedPlane& gone = planes[i_better ? j : i];
         const Vector2d t = DirectionOf(keep);
         const double lo = t.dot(End(keep, 0)), hi = t.dot(End(keep, 1));
@@ -152,9 +156,13 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
         if (g1 > hi) keep.end_known[1] = gone.end_known[1];
         keep.both_ends_known = keep.end_known[0] && keep.end_known[1];
         drop[i_better ? j : i] = true;
-        changed = true;  // the stretched wall may now share most of another
+        grid.Insert(k, box_of(keep, 2.0 * kMergeDistance));
+        stretched.push_back(k);
       }
     }
+    std::sort(stretched.begin(), stretched.end());
+    stretched.erase(std::unique(stretched.begin(), stretched.end()), stretched.end());
+    todo = std::move(stretched);
   }
   // A piece known only by its line continues the nearest wall on its line that may go on
   // towards it (the facing end unknown) when nothing stands in the gap.
