@@ -54,8 +54,8 @@ class RltPlane {
   int64_t LatestPhaseStart() const { return phase_starts_.back(); }
 
   // Largest visible length seen in two of three sightings in a row (§II.C "maximum size of a
-  // plane"); once the wall has been seen whole (both edges static at once) the mean length over
-  // those sightings within a tolerance of it.
+  // plane"); once the wall has been seen whole (both edges static at once) the median length
+  // over those sightings.
   double Length() const;
   bool FullLengthKnown() const { return !full_ranges_.empty(); }
   // Drops the observations before `iteration` (the latest one is always kept): what
