@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <tuple>
 
 namespace relplane::mapper {
@@ -108,6 +109,21 @@ void DropRepeatedSightings(std::vector<Observation>* observations,
   obs.resize(kept);
 }
 
+namespace {
+
+// Does `piece` lie on `wall`'s line (its middle, as in LiesAlong), turned by no more than the
+// plane-equation test allows and overlapping it in height?
+bool OnLineOf(const Observation& piece, const Observation& wall,
+              const RegistrationOptions& options) {
+  const double angle = std::acos(std::clamp(piece.normal.dot(wall.normal), -1.0, 1.0));
+  const Eigen::Vector2d middle = 0.5 * (piece.edge[0] + piece.edge[1]);
+  return angle <= options.max_angle &&
+         std::abs(wall.normal.dot(middle) + wall.d) <= kSameSurface &&
+         Overlap(wall.z_min, wall.z_max, piece.z_min, piece.z_max) >= options.min_overlap;
+}
+
+}  // namespace
+
 double MatchScore(const Observation& latest, const Observation& obs,
                   const RegistrationOptions& options) {
   // Last seen test (§II.A: "only use planes seen in the last few iterations").
@@ -148,11 +164,23 @@ std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observ
     return std::get<2>(x) < std::get<2>(y);
   });
   std::vector<int64_t> match(observations.size(), -1);
-  std::set<int64_t> taken;
+  std::map<int64_t, size_t> taken_by;  // rltplane -> the observation it took
+  std::vector<bool> settled(observations.size(), false);
   for (const auto& [score, k, id] : candidates) {
-    if (match[k] >= 0 || taken.count(id)) continue;
-    match[k] = id;
-    taken.insert(id);
+    if (settled[k]) continue;
+    const auto taken = taken_by.find(id);
+    if (taken == taken_by.end()) {
+      match[k] = id;
+      taken_by.emplace(id, k);
+      settled[k] = true;
+    } else if (OnLineOf(observations[k], observations[taken->second], options)) {
+      // A rltplane it matches took another piece of the same surface (the segmenter split
+      // the wall): any lesser match is another surface that passed the tests, such as the
+      // back of a door recess 0.3 m behind. Registered there, the pose went 0.3 m across the
+      // hallway for 3 s (hallway_loop_doors, σ = 1 cm). It is left to backtracking (§II.A
+      // end) or a new rltplane.
+      settled[k] = true;
+    }
   }
   return match;
 }

@@ -33,7 +33,9 @@ void DropRepeatedSightings(
 
 // For each observation, the id of the rltplane it registers to, or -1 (a new rltplane). Only
 // rltplanes in `state.recent` are compared, so the cost does not grow with the map. Each
-// rltplane takes at most one observation; the highest scores are assigned first.
+// rltplane takes at most one observation; the highest scores are assigned first. A plane on
+// the line of one that took a rltplane it matches is a piece of that surface and takes no
+// lesser match.
 std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observations,
                                           const MapperState& state,
                                           const RegistrationOptions& options);
