@@ -169,8 +169,8 @@ double RltPlane::Length() const {
     // is a minority of the sightings.
     std::vector<double> lengths;
     capped_ = false;
-    for (auto r = full_ranges_.rbegin(); r != full_ranges_.rend() && lengths.size() < kFullLengthCap;
-         ++r) {
+    for (auto r = full_ranges_.rbegin();
+         r != full_ranges_.rend() && lengths.size() < kFullLengthCap; ++r) {
       for (size_t i = LowerBound(r->first);
            i < observations_.size() && lengths.size() < kFullLengthCap; ++i) {
         if (observations_[i].iteration > r->second) break;
@@ -188,12 +188,12 @@ double RltPlane::Length() const {
       std::nth_element(lengths.begin(), mid, lengths.end());
       full_length_ = *mid;
       full_valid_ = true;
-    } else if (!full_valid_) {
-      full_length_ = max_length_;
     }
     full_dirty_ = false;
   }
-  return full_length_;
+  // Seen whole only in sightings already dropped, before any length was taken from them: the
+  // maximum, as it grows (it no longer marks the full length for recomputing).
+  return full_valid_ ? full_length_ : max_length_;
 }
 
 void RltPlane::MarkFull(int64_t first, int64_t last) {
