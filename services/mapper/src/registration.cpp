@@ -25,6 +25,23 @@ constexpr int64_t kEndMemory = 90;  // iterations an uncut end's sighting is com
 // σ = 1 cm, and well below a wall's thickness (a jamb, a recess).
 constexpr double kSameSurface = 0.05;
 
+// Does `piece` lie on `wall`'s line, turned by no more than the plane-equation test allows and
+// overlapping it in height? Judged by the distance to the wall's line at the piece's middle,
+// not the offsets d: a piece a few degrees off has its d far from the wall's when it lies far
+// from the foot of the sensor's normal. Nor at its ends: a fit is known best at its middle, and
+// its ends are off the line by its orientation error over half its length (1.2-1.7 m pieces of
+// the office's partition reported beside the whole wall, 3.5-7 degrees off, had an end 5-9 cm
+// off the wall's line but their middles within 1 cm; they were taken for a second plane and
+// turned the next room's walls by 0.23 degrees, §II.A).
+bool OnLineOf(const Observation& piece, const Observation& wall,
+              const RegistrationOptions& options) {
+  const double angle = std::acos(std::clamp(piece.normal.dot(wall.normal), -1.0, 1.0));
+  const Eigen::Vector2d middle = 0.5 * (piece.edge[0] + piece.edge[1]);
+  return angle <= options.max_angle &&
+         std::abs(wall.normal.dot(middle) + wall.d) <= kSameSurface &&
+         Overlap(wall.z_min, wall.z_max, piece.z_min, piece.z_max) >= options.min_overlap;
+}
+
 // Does `piece` lie along `wall` (both seen in the same iteration), the latter fitted to more
 // points? Of two reports of one surface the one with the wider support is the better fit (the
 // jamb face reported twice, 0.1 m long each, 3 and 12 degrees off). On the wall's line, and
@@ -42,21 +59,7 @@ constexpr double kSameSurface = 0.05;
 bool LiesAlong(const Observation& piece, const Observation& wall,
                const RegistrationOptions& options,
                const std::function<bool(const Eigen::Vector2d&)>& at_view_edge) {
-  if (piece.support >= wall.support) return false;
-  const double angle = std::acos(std::clamp(piece.normal.dot(wall.normal), -1.0, 1.0));
-  if (angle > options.max_angle) return false;
-  // The distance to the wall's line at the piece's middle, not the offsets d: a piece a few
-  // degrees off has its d far from the wall's when it lies far from the foot of the sensor's
-  // normal. Nor at its ends: a fit is known best at its middle, and its ends are off the line by
-  // its orientation error over half its length (1.2-1.7 m pieces of the office's partition
-  // reported beside the whole wall, 3.5-7 degrees off, had an end 5-9 cm off the wall's line but
-  // their middles within 1 cm; they were taken for a second plane and turned the next room's
-  // walls by 0.23 degrees, §II.A).
-  const Eigen::Vector2d middle = 0.5 * (piece.edge[0] + piece.edge[1]);
-  if (std::abs(wall.normal.dot(middle) + wall.d) > kSameSurface) return false;
-  if (Overlap(wall.z_min, wall.z_max, piece.z_min, piece.z_max) < options.min_overlap) {
-    return false;
-  }
+  if (piece.support >= wall.support || !OnLineOf(piece, wall, options)) return false;
   const Eigen::Vector2d t = wall.Direction();
   double w0 = t.dot(wall.edge[0]), w1 = t.dot(wall.edge[1]);
   double p0 = t.dot(piece.edge[0]), p1 = t.dot(piece.edge[1]);
@@ -108,21 +111,6 @@ void DropRepeatedSightings(std::vector<Observation>* observations,
   }
   obs.resize(kept);
 }
-
-namespace {
-
-// Does `piece` lie on `wall`'s line (its middle, as in LiesAlong), turned by no more than the
-// plane-equation test allows and overlapping it in height?
-bool OnLineOf(const Observation& piece, const Observation& wall,
-              const RegistrationOptions& options) {
-  const double angle = std::acos(std::clamp(piece.normal.dot(wall.normal), -1.0, 1.0));
-  const Eigen::Vector2d middle = 0.5 * (piece.edge[0] + piece.edge[1]);
-  return angle <= options.max_angle &&
-         std::abs(wall.normal.dot(middle) + wall.d) <= kSameSurface &&
-         Overlap(wall.z_min, wall.z_max, piece.z_min, piece.z_max) >= options.min_overlap;
-}
-
-}  // namespace
 
 double MatchScore(const Observation& latest, const Observation& obs,
                   const RegistrationOptions& options) {
