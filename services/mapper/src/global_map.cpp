@@ -247,6 +247,19 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
       group.relative = BuildRelativeMap(group, state);
       group.dirty = false;
     }
+    // Through its links as every comparison between mapped walls turns them, as localisation
+    // sees them, not as the groups re-placed just before chained them: a group that places a
+    // wall from a static edge metres along it from where an earlier group put the wall's line
+    // turns the line about that edge, and the chained orientation (0.65 degrees from the
+    // refined one, through a door's pieces) moved a room's side walls and the pose 6.8 cm
+    // across the room in one iteration (an unseen office, 70 degree sensor). Refining turns
+    // only the walls placed in this pass: without a link among them it would change nothing.
+    bool link_replaced = false;
+    for (const auto& [id, rel] : group.relative.members) {
+      const auto by = state.placed_by.find(id);
+      link_replaced |= by != state.placed_by.end() && static_cast<size_t>(by->second) >= from;
+    }
+    if (link_replaced) RefineGlobalOrientations(state, from);
     std::vector<Link> links;
     for (const auto& [id, rel] : group.relative.members) {
       auto it = state.global.find(id);
@@ -324,29 +337,33 @@ void RefineGlobalOrientations(MapperState& state, size_t from) {
   // 4 cm. Anchored at the chained values rather than at the last solution, so solving again
   // after every placement does not walk the orientations away (as pose_graph.cpp's priors).
   // The planes placed before `from` were not re-placed: they are held as last solved.
-  std::vector<int64_t> ids;
-  std::map<int64_t, int> index;
+  std::vector<int64_t> ids;  // ascending, as placed_by is
   for (const auto& [id, g] : state.placed_by) {
     if (g == 0 || static_cast<size_t>(g) < from || !state.chained_alpha.count(id)) continue;
-    index[id] = static_cast<int>(ids.size());
     ids.push_back(id);
   }
   const int n = static_cast<int>(ids.size());
   if (n == 0) return;
+  // Called before every re-placed group is solved (BuildGlobalMap): sorted vectors, not trees.
+  auto index_of = [&](int64_t id) {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+    return it != ids.end() && *it == id ? static_cast<int>(it - ids.begin()) : -1;
+  };
   // A solved plane from its chained orientation, a held one as it stands.
-  auto value = [&](int64_t id) {
-    const auto it = index.count(id) ? state.chained_alpha.find(id) : state.chained_alpha.end();
-    return it != state.chained_alpha.end() ? it->second : state.global.at(id).alpha;
+  auto value = [&](int64_t id, int k) {
+    return k >= 0 ? state.chained_alpha.at(id) : state.global.at(id).alpha;
   };
   // Sparse: a plane is compared only with the members of its groups (§II.C).
-  std::set<PairKey> pairs;
+  std::vector<PairKey> pairs;
   for (int64_t id : ids) {
     for (int64_t g : state.Plane(id)->groups) {
       for (int64_t other : state.groups[g].members) {
-        if (other != id) pairs.insert(KeyOf(id, other));
+        if (other != id) pairs.push_back(KeyOf(id, other));
       }
     }
   }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   std::vector<Eigen::Triplet<double>> a;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
   for (const PairKey& key : pairs) {
@@ -356,10 +373,9 @@ void RefineGlobalOrientations(MapperState& state, size_t from) {
     }
     const double w = cmp->PieceInformation();
     if (w <= 0.0) continue;
-    const auto ix = index.find(key.first), iy = index.find(key.second);
-    const int x = ix == index.end() ? -1 : ix->second, y = iy == index.end() ? -1 : iy->second;
-    const double r =
-        geometry::WrapAngle(value(key.second) - value(key.first) - cmp->PieceAlpha(key.first));
+    const int x = index_of(key.first), y = index_of(key.second);
+    const double r = geometry::WrapAngle(value(key.second, y) - value(key.first, x) -
+                                         cmp->PieceAlpha(key.first));
     if (y >= 0) a.emplace_back(y, y, w), b(y) -= w * r;
     if (x >= 0) a.emplace_back(x, x, w), b(x) += w * r;
     if (x >= 0 && y >= 0) a.emplace_back(x, y, -w), a.emplace_back(y, x, -w);
@@ -373,7 +389,7 @@ void RefineGlobalOrientations(MapperState& state, size_t from) {
   const Eigen::VectorXd dx = solver.solve(b);
   if (!dx.allFinite()) return;
   for (int k = 0; k < n; ++k) {
-    state.global.at(ids[k]).alpha = geometry::WrapAngle(value(ids[k]) + dx(k));
+    state.global.at(ids[k]).alpha = geometry::WrapAngle(value(ids[k], k) + dx(k));
   }
 }
 
