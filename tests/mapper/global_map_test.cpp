@@ -321,6 +321,15 @@ TEST(GlobalMap, AGroupIsPlacedThroughItsLinksAsTheirOrientationsWereRefined) {
   // The corner lies across the room (y) where the side wall's line does.
   EXPECT_NEAR(state.global.at(2).point.y(), 2.0, 0.01);
   EXPECT_NEAR(state.global.at(3).point.y(), 2.0, 0.01);
+
+  // Group 3 placed again alone: the side wall goes back to group 1's placement for the solve,
+  // with group 1's chained orientation; it is refined again first.
+  BuildGlobalMap(state, 3, MapperOptions{});
+  EXPECT_EQ(state.placed_by.at(2), 3);
+  EXPECT_LT(std::abs(geometry::WrapAngle(state.global.at(2).alpha - scene.side_alpha)),
+            0.2 * M_PI / 180.0);
+  EXPECT_NEAR(state.global.at(2).point.y(), 2.0, 0.01);
+  EXPECT_NEAR(state.global.at(3).point.y(), 2.0, 0.01);
 }
 
 }  // namespace

@@ -240,6 +240,8 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
   // without it (§II.D chains groups through shared planes), from its members' first sightings
   // when it had no other (a door jamb's group turned 3.7 degrees in one iteration).
   for (size_t g : earlier) PlaceMembers(state, g, options);
+  // Those go back with their chained orientations: they are refined in this pass as well.
+  const size_t refined_from = earlier.empty() ? from : std::min(from, *earlier.begin());
   const Pose2 start{options.start_pose.x, options.start_pose.y, options.start_pose.yaw};
   for (size_t g = from; g < state.groups.size(); ++g) {
     Group& group = state.groups[g];
@@ -257,9 +259,10 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
     bool link_replaced = false;
     for (const auto& [id, rel] : group.relative.members) {
       const auto by = state.placed_by.find(id);
-      link_replaced |= by != state.placed_by.end() && static_cast<size_t>(by->second) >= from;
+      link_replaced |=
+          by != state.placed_by.end() && static_cast<size_t>(by->second) >= refined_from;
     }
-    if (link_replaced) RefineGlobalOrientations(state, from);
+    if (link_replaced) RefineGlobalOrientations(state, refined_from);
     std::vector<Link> links;
     for (const auto& [id, rel] : group.relative.members) {
       auto it = state.global.find(id);
@@ -304,7 +307,7 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
   }
   // Soft-linked groups: when a loop closes (or a closing tie learns more), the group placements
   // are solved together over the graph of ties and every group re-places its members.
-  size_t refine_from = from;
+  size_t refine_from = refined_from;
   int evidence = 0;
   for (const Group& group : state.groups) evidence += group.loop_evidence;
   if (options.graph.enabled && evidence > state.loop_evidence) {
