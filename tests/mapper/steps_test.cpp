@@ -264,6 +264,37 @@ TEST(Localisation, AWallEndSeenFromAFixedPoseMovesThePositionAlongTheHeadingOnly
   }
 }
 
+TEST(Localisation, AMappedWallEndTheViewDidNotShowDoesNotMoveThePosition) {
+  // §II.E: one wall, y = 1, mapped with its end at (3, 1); the sensor at (0.05, 0) facing along
+  // it, where the learnt motion predicts it. Seen now, the wall's part in view ends 6 cm short
+  // of the mapped end, where a nearer wall hides the rest (marked cut, as an edge at the
+  // view's range is). That is no wall end: snapped to the map, it put the position 6 cm out (a
+  // hallway wall's end at the range, 7-12 cm out every 4th iteration for 25 iterations).
+  LearnedFrustum frustum;  // a view 174 degrees wide
+  frustum.Observe({0.05, 1.0});
+  frustum.Observe({0.05, -1.0});
+  const Vector2d end(3, 1), hidden(2.94, 1);
+  const geometry::Pose2 truth{0.05, 0.0, 0.0};
+  const geometry::Pose2 inv = truth.Inverse();
+  Observation seen_now = *MakeObservation(Wall(inv * Vector2d(1.5, 1), inv * hidden), 1, 0.3);
+  const RltPlane wall(0, seen_now, 0.05, 100);
+  const int e = (truth * seen_now.edge[0] - hidden).norm() < 1e-6 ? 0 : 1;
+  Placement placed;
+  placed.alpha = seen_now.Alpha();
+  placed.point = end;
+  placed.ref = e;
+  placed.known = Known::kPoint;
+  // Uncut, the end is taken: the sensor 6 cm further on than it is.
+  PoseEstimate est = Localise({{&seen_now, &wall, placed}}, truth, frustum, {});
+  ASSERT_EQ(est.status, PoseStatus::kMotionModel);
+  ASSERT_NEAR(est.pose.x, truth.x + 0.06, 1e-6);
+  seen_now.cut[e] = true;
+  est = Localise({{&seen_now, &wall, placed}}, truth, frustum, {});
+  EXPECT_EQ(est.status, PoseStatus::kMotionModel);
+  EXPECT_NEAR(est.pose.x, truth.x, 1e-6);
+  EXPECT_NEAR(est.pose.y, truth.y, 1e-6);
+}
+
 // A hallway (walls y = 1 and y = -1) driven along x from the start pose, the only fixed pose:
 // the lines leave x open, and the ends of two pieces of the right wall, (2, -1) and (3, -1),
 // seen uncut from the start show how far the sensor went (§II.E). Localises the view from x

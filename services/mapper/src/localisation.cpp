@@ -227,10 +227,11 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
         const Vector2d t = DirectionOf(x.world.alpha);
         for (int e = 0; e < 2; ++e) {
           Vector2d mapped;
-          if (frustum.Clipped(x.obs->edge[e])) continue;  // cut by the view, not a wall end
+          // Cut by the view (its bearing or its range) or seen past a nearer wall: no wall end.
+          if (frustum.Clipped(x.obs->edge[e]) || x.obs->cut[e]) continue;
           const bool placed =
               x.world.known == Known::kPoint && EdgePoint(*x.plane, x.world, e, &mapped);
-          if (!placed && (!x.end_seen[e] || x.obs->cut[e])) continue;
+          if (!placed && !x.end_seen[e]) continue;
           const double along = t.dot((placed ? mapped : x.end[e]) - rot * x.obs->edge[e]);
           const double moved = along - t.dot(previous.Translation());
           if (placed) {
