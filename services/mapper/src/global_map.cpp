@@ -340,14 +340,19 @@ void RefineGlobalOrientations(MapperState& state, size_t from) {
   // 4 cm. Anchored at the chained values rather than at the last solution, so solving again
   // after every placement does not walk the orientations away (as pose_graph.cpp's priors).
   // The planes placed before `from` were not re-placed: they are held as last solved.
-  std::vector<int64_t> ids;  // ascending, as placed_by is
-  for (const auto& [id, g] : state.placed_by) {
-    if (g == 0 || static_cast<size_t>(g) < from || !state.chained_alpha.count(id)) continue;
-    ids.push_back(id);
+  // Called before every re-placed group is solved (BuildGlobalMap): the cost follows those
+  // groups, not the map, and sorted vectors stand in for trees.
+  std::vector<int64_t> ids;
+  for (size_t g = std::max<size_t>(from, 1); g < state.groups.size(); ++g) {
+    for (const auto& [id, rel] : state.groups[g].relative.members) {
+      const auto by = state.placed_by.find(id);
+      if (by == state.placed_by.end() || static_cast<size_t>(by->second) != g) continue;
+      if (state.chained_alpha.count(id)) ids.push_back(id);
+    }
   }
+  std::sort(ids.begin(), ids.end());
   const int n = static_cast<int>(ids.size());
   if (n == 0) return;
-  // Called before every re-placed group is solved (BuildGlobalMap): sorted vectors, not trees.
   auto index_of = [&](int64_t id) {
     const auto it = std::lower_bound(ids.begin(), ids.end(), id);
     return it != ids.end() && *it == id ? static_cast<int>(it - ids.begin()) : -1;
