@@ -1,0 +1,198 @@
+// relplane-accuracy: scenarios through simulator, EM segmenter and mapper in one process, over
+// a list of sensor-noise seeds, each run held to issue 4's targets (README "Mapper", the seed
+// table). No bus and no clock: a run gives the same numbers on any machine, so a change to the
+// mapper or the segmenter is judged on many seeds in a few minutes.
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "relplane/accuracy/scenario_run.hpp"
+#include "relplane/accuracy/sweep.hpp"
+#include "relplane/common/cli.hpp"
+#include "relplane/common/options.hpp"
+
+namespace relplane::accuracy {
+namespace {
+
+struct Flags {
+  std::vector<std::string> scenarios;
+  std::string seeds;
+  double sigma = -1.0;
+  int laps = 0;
+  std::vector<std::string> overrides;
+  double min_wall_length_m = 0.3;
+  Targets targets;
+  int jobs = 0;
+  std::string json;
+  bool check = false;
+};
+
+// A scenario named without a path or .yaml is one of the project's (scenarios/NAME.yaml).
+std::string ResolveScenario(const std::string& name) {
+  if (std::ifstream(name).good()) return name;
+  if (name.find('/') == std::string::npos && name.find('.') == std::string::npos) {
+    const std::string own = std::string(RELPLANE_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
+    if (std::ifstream(own).good()) return own;
+  }
+  std::string known;
+  const std::filesystem::path dir = std::filesystem::path(RELPLANE_SOURCE_DIR) / "scenarios";
+  std::error_code error;
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+  throw config::ConfigError(name + ": no such scenario file (the project's: " + known + ")");
+}
+
+std::string StemOf(const std::string& file) {
+  std::string stem = file.substr(file.find_last_of('/') + 1);
+  if (stem.size() > 5 && stem.compare(stem.size() - 5, 5, ".yaml") == 0) stem.resize(stem.size() - 5);
+  return stem;
+}
+
+int Main(int argc, char** argv) {
+  Flags f;
+  cli::Parser parser(
+      "Runs each SCENARIO through simulator, EM segmenter and mapper in one process (no bus, no "
+      "clock), once per sensor-noise seed, and holds each run to the mapper's targets (ATE RMSE, "
+      "duplicate walls, worst wall normal and offset, a pose every frame). Prints a line per run "
+      "as it ends and a summary per scenario. Example, the README's seed table: "
+      "relplane-accuracy office hallway_loop_doors --sigma 0.01 --seeds 1-6 "
+      "--min-wall-length 0.31",
+      "relplane-accuracy");
+  parser.Add("scenarios", &f.scenarios,
+             "scenario files, or names of the project's scenarios (office, hallway_loop, ...)")
+      .Required();
+  parser.Add("--seeds", &f.seeds, "sensor noise seeds, e.g. 1-6 or 2,5 (default: the scenario's)");
+  parser.Add("--sigma", &f.sigma, "sensor noise in metres (default: the scenario's)");
+  parser.Add("--laps", &f.laps, "times round a closed trajectory (default: the scenario's)")
+      .Positive();
+  parser.Add("--set", &f.overrides, "override a scenario key, key.path=value (repeatable)")
+      .OneValuePerUse();
+  parser.Add("--min-wall-length", &f.min_wall_length_m, "true walls shorter than this are not "
+             "scored, metres").NonNegative().ShowDefault();
+  parser.Add("--ate-max", &f.targets.ate_rmse_m, "target: ATE RMSE, metres").NonNegative()
+      .ShowDefault();
+  parser.Add("--duplicates-max", &f.targets.duplicates, "target: duplicate walls").NonNegative()
+      .ShowDefault();
+  parser.Add("--normal-max", &f.targets.normal_deg, "target: worst wall normal, degrees")
+      .NonNegative().ShowDefault();
+  parser.Add("--offset-max", &f.targets.offset_m, "target: worst wall offset, metres")
+      .NonNegative().ShowDefault();
+  parser.Add("--jobs,-j", &f.jobs, "runs at once (default: one per core)").NonNegative();
+  parser.Add("--json", &f.json, "also write every run's metrics and the summaries to FILE");
+  parser.AddFlag("--check", &f.check, "exit 1 unless every run meets the targets");
+  if (auto code = parser.Parse(argc, argv)) return *code;
+
+  // Everything is checked before the first run: a typo fails now, not after minutes.
+  std::vector<uint64_t> seeds = {0};
+  std::vector<std::string> base_overrides = f.overrides;
+  std::vector<RunSpec> specs;
+  std::vector<SweepRun> runs;
+  try {
+    if (!f.seeds.empty()) seeds = ParseSeeds(f.seeds);
+    if (f.sigma >= 0.0) base_overrides.push_back("sim.sensor.noise_sigma=" + std::to_string(f.sigma));
+    if (f.laps > 0) base_overrides.push_back("sim.trajectory.laps=" + std::to_string(f.laps));
+    for (const std::string& name : f.scenarios) {
+      const std::string file = ResolveScenario(name);
+      for (uint64_t seed : seeds) {
+        RunSpec spec;
+        spec.file = file;
+        spec.overrides = base_overrides;
+        if (seed > 0) spec.overrides.push_back("sim.sensor.seed=" + std::to_string(seed));
+        spec.min_wall_length_m = f.min_wall_length_m;
+        specs.push_back(spec);
+        SweepRun run;
+        run.scenario = StemOf(file);
+        run.seed = seed;
+        runs.push_back(run);
+      }
+    }
+    // Every run's options are read now, so a bad key or value is reported before any work.
+    for (const RunSpec& spec : specs) CheckScenario(spec);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "relplane-accuracy: %s\n", e.what());
+    return cli::kExitConfig;
+  }
+
+  const int jobs = std::max(1, std::min<int>(f.jobs > 0 ? f.jobs : std::thread::hardware_concurrency(),
+                                             static_cast<int>(specs.size())));
+  std::printf("relplane-accuracy: %zu runs on %d thread%s\n", specs.size(), jobs,
+              jobs > 1 ? "s" : "");
+  std::fflush(stdout);
+  std::atomic<size_t> next{0};
+  std::atomic<size_t> done{0};
+  std::mutex print;
+  std::vector<std::string> errors(specs.size());
+  auto worker = [&] {
+    for (size_t i = next++; i < specs.size(); i = next++) {
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        runs[i].result = RunScenario(specs[i]);
+        runs[i].misses = Misses(runs[i].result, f.targets);
+      } catch (const std::exception& e) {
+        errors[i] = e.what();
+      }
+      runs[i].seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::lock_guard<std::mutex> lock(print);
+      const size_t n = ++done;
+      if (errors[i].empty()) {
+        std::printf("[%zu/%zu] %s (%.1f s)\n", n, specs.size(), RunLine(runs[i]).c_str(),
+                    runs[i].seconds);
+      } else {
+        std::printf("[%zu/%zu] %s seed %llu: failed: %s\n", n, specs.size(),
+                    runs[i].scenario.c_str(), static_cast<unsigned long long>(runs[i].seed),
+                    errors[i].c_str());
+      }
+      std::fflush(stdout);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 0; t < jobs; ++t) threads.emplace_back(worker);
+  for (std::thread& t : threads) t.join();
+
+  bool all_met = true;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    if (!errors[i].empty()) runs[i].misses.push_back("failed: " + errors[i]);
+    all_met = all_met && runs[i].misses.empty();
+  }
+  std::printf("\n%-24s %9s %11s %11s  %s\n", "scenario", "meeting", "ATE sum", "ATE worst",
+              "failing seeds");
+  int meeting = 0;
+  double ate_sum = 0.0;
+  for (const ScenarioSummary& s : Summarise(runs)) {
+    std::string failing;
+    for (uint64_t seed : s.failing_seeds) {
+      failing += (failing.empty() ? "" : ",") + (seed > 0 ? std::to_string(seed) : "own");
+    }
+    std::printf("%-24s %4d of %-2d %9.3f m %9.3f m  %s\n", s.scenario.c_str(), s.meeting, s.runs,
+                s.ate_sum_m, s.ate_worst_m, failing.c_str());
+    meeting += s.meeting;
+    ate_sum += s.ate_sum_m;
+  }
+  std::printf("%-24s %4d of %-2zu %9.3f m\n", "all", meeting, runs.size(), ate_sum);
+  if (!f.json.empty()) {
+    std::ofstream out(f.json);
+    out << SweepJson(runs, f.targets, base_overrides);
+    if (!out) {
+      std::fprintf(stderr, "relplane-accuracy: cannot write %s\n", f.json.c_str());
+      return 1;
+    }
+  }
+  return f.check && !all_met ? 1 : 0;
+}
+
+}  // namespace
+}  // namespace relplane::accuracy
+
+int main(int argc, char** argv) { return relplane::accuracy::Main(argc, argv); }
