@@ -101,5 +101,23 @@ TEST(Summarise, CountsEachScenarioInTheOrderFirstSeen) {
   EXPECT_EQ(s[1].meeting, 0);
 }
 
+TEST(FramesCsv, OneRowPerFrameWithItsStatusAndErrors) {
+  RunResult r;
+  FramePose tracked;
+  tracked.seq = 0;
+  tracked.status = 0;
+  tracked.planes = 3;
+  tracked.x = 1.0, tracked.y = 2.0, tracked.yaw = 0.1;
+  tracked.true_x = 1.03, tracked.true_y = 2.04, tracked.true_yaw = 0.1 - M_PI / 180.0;
+  FramePose refused;
+  refused.seq = 1;
+  r.poses = {tracked, refused};
+  const std::string csv = FramesCsv(r);
+  EXPECT_EQ(csv,
+            "seq,status,planes,x,y,yaw,true_x,true_y,true_yaw,error_m,yaw_error_deg\n"
+            "0,TRACKING,3,1.0000,2.0000,0.10000,1.0300,2.0400,0.08255,0.0500,1.000\n"
+            "1,REFUSED,0,0.0000,0.0000,0.00000,0.0000,0.0000,0.00000,0.0000,0.000\n");
+}
+
 }  // namespace
 }  // namespace relplane::accuracy

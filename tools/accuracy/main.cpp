@@ -31,6 +31,7 @@ struct Flags {
   Targets targets;
   int jobs = 0;
   std::string json;
+  std::string frames_dir;
   bool check = false;
 };
 
@@ -90,6 +91,8 @@ int Main(int argc, char** argv) {
       .NonNegative().ShowDefault();
   parser.Add("--jobs,-j", &f.jobs, "runs at once (default: one per core)").NonNegative();
   parser.Add("--json", &f.json, "also write every run's metrics and the summaries to FILE");
+  parser.Add("--frames", &f.frames_dir, "also write each run's poses, frame by frame, to "
+             "DIR/SCENARIO-seedN.csv");
   parser.AddFlag("--check", &f.check, "exit 1 unless every run meets the targets");
   if (auto code = parser.Parse(argc, argv)) return *code;
 
@@ -119,6 +122,11 @@ int Main(int argc, char** argv) {
     }
     // Every run's options are read now, so a bad key or value is reported before any work.
     for (const RunSpec& spec : specs) CheckScenario(spec);
+    if (!f.frames_dir.empty()) {
+      std::error_code error;
+      std::filesystem::create_directories(f.frames_dir, error);
+      if (error) throw std::runtime_error(f.frames_dir + ": " + error.message());
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "relplane-accuracy: %s\n", e.what());
     return cli::kExitConfig;
@@ -141,6 +149,13 @@ int Main(int argc, char** argv) {
         runs[i].misses = Misses(runs[i].result, f.targets);
       } catch (const std::exception& e) {
         errors[i] = e.what();
+      }
+      if (errors[i].empty() && !f.frames_dir.empty()) {
+        const std::string path = f.frames_dir + "/" + runs[i].scenario + "-seed" +
+                                 std::to_string(runs[i].seed) + ".csv";
+        std::ofstream out(path);
+        out << FramesCsv(runs[i].result);
+        if (!out) errors[i] = "cannot write " + path;
       }
       runs[i].seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

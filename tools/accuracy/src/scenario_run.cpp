@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -97,6 +98,12 @@ RunResult RunScenario(const RunSpec& spec) {
     ++r.frames;
     const Eigen::Isometry3d t = simulation.SensorPose(k);
     truth.push_back(Sample(k, t.translation(), Eigen::Quaterniond(t.rotation())));
+    FramePose& frame = r.poses.emplace_back();
+    frame.seq = k;
+    frame.true_x = t.translation().x();
+    frame.true_y = t.translation().y();
+    const Eigen::Vector3d forward = t.rotation() * Eigen::Vector3d::UnitX();
+    frame.true_yaw = std::atan2(forward.y(), forward.x());
     // Through the messages, as the services pass them: a refused message is counted and the
     // frame gets no pose, as live.
     const point_cloud_t cloud_msg = sim::ToPointCloud(simulation.Frame(k), k, k);
@@ -113,6 +120,11 @@ RunResult RunScenario(const RunSpec& spec) {
       continue;
     }
     const mapper::PoseEstimate pose = mapper.Process(k, planes);
+    frame.status = static_cast<int>(pose.status);
+    frame.x = pose.pose.x;
+    frame.y = pose.pose.y;
+    frame.yaw = pose.pose.yaw;
+    frame.planes = pose.planes;
     if (pose.status == mapper::PoseStatus::kLost) ++r.lost_frames;
     if (pose.status == mapper::PoseStatus::kMotionModel) ++r.motion_model_frames;
     estimate.push_back(

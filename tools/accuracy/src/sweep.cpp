@@ -126,6 +126,22 @@ std::string RunLine(const SweepRun& run) {
   return line + ")";
 }
 
+std::string FramesCsv(const RunResult& r) {
+  static constexpr const char* kStatus[] = {"TRACKING", "MOTION_MODEL", "INITIALIZING", "LOST"};
+  std::string out = "seq,status,planes,x,y,yaw,true_x,true_y,true_yaw,error_m,yaw_error_deg\n";
+  char line[256];
+  for (const FramePose& p : r.poses) {
+    const char* status = p.status >= 0 && p.status < 4 ? kStatus[p.status] : "REFUSED";
+    const double error = std::hypot(p.x - p.true_x, p.y - p.true_y);
+    const double yaw_error = std::remainder(p.yaw - p.true_yaw, 2.0 * M_PI) * 180.0 / M_PI;
+    std::snprintf(line, sizeof line, "%lld,%s,%d,%.4f,%.4f,%.5f,%.4f,%.4f,%.5f,%.4f,%.3f\n",
+                  static_cast<long long>(p.seq), status, p.planes, p.x, p.y, p.yaw, p.true_x,
+                  p.true_y, p.true_yaw, error, yaw_error);
+    out += line;
+  }
+  return out;
+}
+
 std::string SweepJson(const std::vector<SweepRun>& runs, const Targets& targets,
                       const std::vector<std::string>& overrides) {
   eval::JsonWriter w;

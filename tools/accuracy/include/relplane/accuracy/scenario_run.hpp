@@ -22,6 +22,15 @@ struct RunSpec {
   double min_wall_length_m = 0.3;
 };
 
+// One frame's pose against the truth, for tracing where a run goes wrong.
+struct FramePose {
+  int64_t seq = 0;
+  int status = -1;  // mapper::PoseStatus as int; -1: the frame was refused and has no pose
+  double x = 0.0, y = 0.0, yaw = 0.0;                 // the estimate
+  double true_x = 0.0, true_y = 0.0, true_yaw = 0.0;  // the simulator's
+  int planes = 0;                                     // planes the pose used
+};
+
 struct RunResult {
   eval::TrajectoryMetrics trajectory;
   eval::MapMetrics map;
@@ -32,6 +41,7 @@ struct RunResult {
   int64_t lost_frames = 0;          // poses with status LOST
   int64_t motion_model_frames = 0;  // poses with status MOTION_MODEL (§II.E)
   int64_t rejected_frames = 0;      // a conversion refused the message: counted, not mapped
+  std::vector<FramePose> poses;     // every frame's
 };
 
 // Reads every section `spec` gives the services, as RunScenario does, and runs nothing. Throws as RunScenario.

@@ -52,6 +52,11 @@ std::vector<ScenarioSummary> Summarise(const std::vector<SweepRun>& runs);
 // One line for a run: "office seed 3: ATE 0.013 m, 0 duplicates, ... meets the targets".
 std::string RunLine(const SweepRun& run);
 
+// Every frame of a run as CSV (seq, status, estimate, truth, position and yaw error), for
+// finding the iteration where a run goes wrong. Status is POSE's name, "REFUSED" for a frame
+// the conversions refused.
+std::string FramesCsv(const RunResult& r);
+
 // The sweep as JSON: the targets, every run's metrics and misses, and the summaries.
 std::string SweepJson(const std::vector<SweepRun>& runs, const Targets& targets,
                       const std::vector<std::string>& overrides);
