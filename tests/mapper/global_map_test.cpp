@@ -66,6 +66,65 @@ TEST(GlobalMap, AGroupRePlacedKeepsTheLinkItTookOverFromAnEarlierGroup) {
   EXPECT_NEAR(state.global.at(0).alpha, heading - M_PI / 2, 1e-9);
 }
 
+TEST(GlobalMap, AShortPieceMeasuredFarAlongItsLineDoesNotMoveItsGroupAlongTheHallway) {
+  // A hallway along x seen from the origin: its side wall (y = -1.25, x from 1 to 5) and a
+  // pilaster side crossing it (x = 3, 0.3 m of it from y = -1.25), the piece fitted 1.2 degrees
+  // off. Group 0 mapped both: the wall with its end at x = 5, the piece by its line through the
+  // middle of its points. Group 1 holds both as well: the wall from the same end, and the piece
+  // by a line measured from an edge 2.3 m along it (y = -3.4), where the offset came out right
+  // but which its fit's tilt carries 4.8 cm off by the time it reaches the piece. Group 1 lies
+  // where group 0 does. Its line link once decided where along the hallway (the static end being
+  // used only where the lines leave a direction open), and moved the group by 4.8 cm.
+  const double tilt = 1.2 * M_PI / 180.0;
+  const Vector2d middle(3.0, -1.1), t(std::sin(tilt), std::cos(tilt));
+  MapperState state;
+  state.first_iteration = 0;
+  for (int64_t k = 0; k < 3; ++k) {
+    state.poses[k] = {0.0, 0.0, 0.0};
+    state.fixed_poses.insert(k);
+    const Observation wall = *MakeObservation(testing::WallSeen({1, -1.25}, {5, -1.25}), k, 0.3);
+    const Observation piece =
+        *MakeObservation(testing::WallSeen(middle - 0.15 * t, middle + 0.15 * t), k, 0.3);
+    if (k == 0) {
+      state.planes.emplace(0, RltPlane(0, wall, 0.05, 1000));
+      state.planes.emplace(1, RltPlane(1, piece, 0.05, 1000));
+    } else {
+      state.Plane(0)->Add(wall);
+      state.Plane(1)->Add(piece);
+    }
+  }
+  for (RltPlane* plane : {state.Plane(0), state.Plane(1)}) {
+    plane->latest_pose = {0.0, 0.0, 0.0};
+    plane->latest_pose_known = true;
+    plane->groups = {0, 1};
+  }
+  const geometry::Pose2 origin{0.0, 0.0, 0.0};
+  const Observation& wall = state.Plane(0)->Latest();
+  const int far_end = wall.edge[0].x() > wall.edge[1].x() ? 0 : 1;
+  const Placement wall_placed = PlacementOf(wall, origin, far_end);
+  const Placement piece_line = PlacementOf(state.Plane(1)->Latest(), origin, -1);
+  ASSERT_EQ(wall_placed.known, Known::kPoint);
+  ASSERT_NEAR(wall_placed.point.x(), 5.0, 1e-6);
+  ASSERT_EQ(piece_line.known, Known::kLine);
+  // The piece's line as group 1 measured it: right at y = -3.4, tilted as the fit is.
+  Placement measured = piece_line;
+  measured.point = Vector2d(3.0, -3.4);
+  const double at_piece = measured.point.x() + (middle.y() - measured.point.y()) *
+                                                   DirectionOf(measured.alpha).x() /
+                                                   DirectionOf(measured.alpha).y();
+  ASSERT_GT(std::abs(at_piece - 3.0), 0.045);  // the line the test is about: 4.8 cm off
+
+  state.groups = {Built(0, 0, {{0, wall_placed}, {1, piece_line}}, 0),
+                  Built(1, 2, {{0, wall_placed}, {1, measured}}, 0)};
+  state.global = {{0, wall_placed}, {1, piece_line}};
+  state.placed_by = {{0, 0}, {1, 0}};
+  BuildGlobalMap(state, 1, MapperOptions{});
+  const geometry::Pose2& placed = state.groups[1].placement;
+  EXPECT_NEAR(placed.x, 0.0, 0.005);
+  EXPECT_NEAR(placed.y, 0.0, 0.005);
+  EXPECT_NEAR(placed.yaw, 0.0, 1e-3);
+}
+
 TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {
   // From the start pose a wall across the view (x = 3) is seen whole, y from 2 to -2, across a
   // door (the lintel joins its pieces); the view cuts both edges but is not learnt yet, so they
