@@ -151,11 +151,13 @@ Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& 
 }
 
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
-                      const LearnedFrustum& frustum, const LocalisationOptions& options) {
+                      const LearnedFrustum& frustum, const LocalisationOptions& options,
+                      int held) {
   PoseEstimate out;
   out.pose = previous;
   std::vector<bool> use(sightings.size(), true);
   for (int round = 0; round < 2; ++round) {
+    out.end_moved = false;
     double s = 0.0, c = 0.0;
     int n = 0;
     for (size_t k = 0; k < sightings.size(); ++k) {
@@ -245,10 +247,14 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
           // its noise is seen past where it stands (a corner's end 2 m ahead, seen 0.13 m past
           // the corner for an iteration): taken, it set the position back, and the gate about
           // that lagging position then turned away every end until the hallway's first door
-          // frame, 0.26 m behind for 30 iterations.
+          // frame, 0.26 m behind for 30 iterations. Forwards by up to a step for each iteration
+          // held still as well: one end seen 9 cm short (a shrinking piece beside a recess)
+          // held the start back, every honest end was then more than a step ahead, and the
+          // first group was placed 0.3 m behind (hallway_out_and_back, σ = 1 cm, seed 11).
           const double forwards = t.dot(rot.col(0)) >= 0.0 ? moved : -moved;
           const double noise = LearnedFrustum::kEdgeNoise;
-          if (forwards <= -noise || forwards >= kMaxStep + noise) continue;
+          const double reach = kMaxStep * (1 + std::clamp(held, 0, kMaxHeld));
+          if (forwards <= -noise || forwards >= reach + noise) continue;
           const double h = std::abs(NormalOf(x.obs->Alpha()).dot(x.obs->edge[e]));
           const double spacing =
               h > 0.0 ? x.obs->edge[e].squaredNorm() / h : std::numeric_limits<double>::infinity();
@@ -263,7 +269,10 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       // across the heading the position stays where it was, whatever an end seen at another
       // angle, off by its sampling, says (an office's door jamb moved it 1.3 cm a frame).
       const bool along_heading = std::abs(open.dot(rot.col(0))) >= kAlongHeading;
-      if (finest && along_heading) sys.Add(finest_dir, finest_along);
+      if (finest && along_heading) {
+        sys.Add(finest_dir, finest_along);
+        out.end_moved = true;
+      }
     }
     // The previous position only decides a direction the walls leave open.
     const Vector2d pos = SolveWithPrior(sys.a, sys.b, previous.Translation(),

@@ -147,7 +147,7 @@ std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation
     }
     geometry::Pose2 pose = predicted_;
     if (!sightings.empty()) {
-      pose = mapper::Localise(sightings, predicted_, frustum_, options_.localisation).pose;
+      pose = mapper::Localise(sightings, predicted_, frustum_, options_.localisation, held_).pose;
     }
     std::set<int64_t> taken(match.begin(), match.end());
     for (size_t k = 0; k < observations.size(); ++k) {
@@ -255,7 +255,8 @@ PoseEstimate Mapper::Localise(int64_t iteration, const std::vector<int64_t>& vis
   }
   bool ends_seen = false;
   auto localise = [&](const geometry::Pose2& previous) {
-    PoseEstimate est = mapper::Localise(sightings, previous, frustum_, options_.localisation);
+    PoseEstimate est =
+        mapper::Localise(sightings, previous, frustum_, options_.localisation, held_);
     if (est.status != PoseStatus::kMotionModel || motion_known_ || ends_seen) return est;
     // The walls leave a direction open and the motion is not known (the start, moving off
     // after a turn on the spot; not while turning): the wall ends seen from poses the walls fixed
@@ -271,13 +272,16 @@ PoseEstimate Mapper::Localise(int64_t iteration, const std::vector<int64_t>& vis
         if (seen.valid) x.end[e] = seen.edge[e];
       }
     }
-    return mapper::Localise(sightings, previous, frustum_, options_.localisation);
+    return mapper::Localise(sightings, previous, frustum_, options_.localisation, held_);
   };
   PoseEstimate estimate = localise(predicted_);
   if (previous_iteration_ >= 0 && Turning(pose_, estimate.pose, iteration - previous_iteration_)) {
     // The turn starts now: the sensor did not walk on after all.
     estimate = localise(pose_);
   }
+  const bool held = !motion_known_ && estimate.status == PoseStatus::kMotionModel &&
+                    !estimate.end_moved;
+  held_ = held ? held_ + 1 : 0;
   if (initializing) estimate.status = PoseStatus::kInitializing;
   if (state_.first_iteration == iteration) estimate.pose = pose_;
   return estimate;

@@ -19,6 +19,9 @@ struct PoseEstimate {
   geometry::Pose2 pose;
   PoseStatus status = PoseStatus::kLost;
   int planes = 0;  // planes used
+  // The §II.E motion model moved the position along the heading to a wall end seen uncut from
+  // poses the walls fixed (no motion known, walls leaving that direction open).
+  bool end_moved = false;
 };
 
 // One observation of a mapped wall: what is seen now and where the map has it.
@@ -89,8 +92,10 @@ double OrientationWeight(const Observation& obs);
 double OrientationWeight(const RltPlane& plane);
 
 // The farthest the platform moves in an iteration (3 m/s at 30 Hz): what a learnt velocity is
-// capped at, and how far ahead of the previous pose a wall end may put it when no motion is known.
+// capped at, and how far ahead of the previous pose a wall end may put it when no motion is known
+// (a step for each iteration the position has been held still, up to kMaxHeld of them).
 constexpr double kMaxStep = 0.1;  // m
+constexpr int kMaxHeld = 5;
 
 // Information (smallest eigenvalue of the sum of n n^T over unit wall normals) below which
 // walls leave a direction open: lines within ~11 degrees of parallel.
@@ -113,7 +118,10 @@ Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& 
 // wall, or walls that leave the position underdetermined, the result is the motion model
 // (§II.E): the wall stays where the map has it, the unobserved direction keeps its previous
 // value, and a mapped wall end seen at its predicted place pins the position along the wall.
+// `held`: the iterations in a row before this one in which no motion was known and no wall end
+// moved the position (`end_moved`): the sensor may have moved on a step in each.
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
-                      const LearnedFrustum& frustum, const LocalisationOptions& options);
+                      const LearnedFrustum& frustum, const LocalisationOptions& options,
+                      int held = 0);
 
 }  // namespace relplane::mapper

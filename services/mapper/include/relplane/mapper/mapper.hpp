@@ -72,6 +72,9 @@ class Mapper {
   geometry::Pose2 pose_;
   geometry::Pose2 predicted_;  // pose_ moved on at the learnt velocity to this iteration
   bool motion_known_ = false;  // Predict's `known` for this iteration
+  // Iterations in a row whose position was held still: no motion known, the walls leaving the
+  // heading open and no wall end moving it (Localise's `held`).
+  int held_ = 0;
   LearnedFrustum frustum_;
   // The frustum's range limit the stored edges were last judged against (MarkViewCuts).
   double judged_range_limit_ = std::numeric_limits<double>::infinity();
