@@ -4,6 +4,7 @@
 // alone; here a wall's last sample lands up to a ray spacing short of its end, as it does live.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "relplane/accuracy/scenario_run.hpp"
@@ -14,8 +15,12 @@ namespace {
 using accuracy::RunResult;
 
 // The scenario as its YAML has it; a sigma >= 0 and a seed > 0 replace the sensor's.
-RunResult RunScenario(const std::string& name, double sigma = -1.0, uint64_t seed = 0) {
+// `min_wall_length`: true walls shorter than this are not scored (the README's seed tables leave
+// out the doors' 0.30 m jambs, at the evaluation's limit, with 0.31).
+RunResult RunScenario(const std::string& name, double sigma = -1.0, uint64_t seed = 0,
+                      double min_wall_length = 0.3) {
   accuracy::RunSpec spec;
+  spec.min_wall_length_m = min_wall_length;
   spec.file = std::string(RELPLANE_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
   if (sigma >= 0.0) spec.overrides.push_back("sim.sensor.noise_sigma=" + std::to_string(sigma));
   if (seed > 0) spec.overrides.push_back("sim.sensor.seed=" + std::to_string(seed));
@@ -51,6 +56,28 @@ TEST(PipelineAccuracy, OfficeOtherSensorNoisySeed4) {
   EXPECT_EQ(r.map.duplicates, 0);
   EXPECT_LT(r.map.offset_error_m.max, 0.05);
   EXPECT_LT(r.map.normal_error_deg.max, 1.0);
+}
+
+// σ = 1 cm, noise seed 11: at iteration 4 a wall end seen 9 cm short held the start back; every
+// honest end after it lay more than a step ahead and was refused, so the position stood still
+// while the sensor drove on, the first group was placed 0.3 m behind and 8 walls went unmatched
+// (ATE 0.37 m). A position held still now takes an end up to a step further ahead for each
+// iteration it was held (§II.E). The run still misses the targets (ATE 0.12 m: a segmenter fit
+// running 0.26 m past a wall's end at iteration 20, see the README); this holds what was fixed.
+TEST(PipelineAccuracy, OutAndBackNoisySeed11StartKeepsUpWithTheSensor) {
+  const RunResult r = RunScenario("hallway_out_and_back", 0.01, 11, 0.31);
+  // Frames 6-19 (the first metre once the bad end is past): 0.24 m behind on average before.
+  double sum = 0.0;
+  int n = 0;
+  for (const accuracy::FramePose& f : r.poses) {
+    if (f.seq < 6 || f.seq > 19 || f.status < 0) continue;
+    sum += std::hypot(f.x - f.true_x, f.y - f.true_y);
+    ++n;
+  }
+  ASSERT_EQ(n, 14);
+  EXPECT_LT(sum / n, 0.05);
+  EXPECT_EQ(r.map.missed, 0);
+  EXPECT_LT(r.trajectory.ate_rmse_m, 0.2);
 }
 
 }  // namespace
