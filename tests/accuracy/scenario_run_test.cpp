@@ -22,6 +22,16 @@ TEST(ScenarioRun, MapsTheStraightHallwayAndGivesEveryFrameAPose) {
   EXPECT_EQ(r.trajectory.matched, r.frames);
   EXPECT_LT(r.trajectory.ate_rmse_m, 0.01);
   EXPECT_GE(r.map.walls_mapped, 3);
+  // Every scored wall is reported with where it stands, and every matched one is within 1 cm.
+  ASSERT_EQ(r.walls.size(), r.map.walls.size());
+  int matched = 0;
+  for (const WallReport& wall : r.walls) {
+    EXPECT_GE((wall.to - wall.from).norm(), 0.3) << "wall " << wall.true_id;
+    if (wall.matches == 0) continue;
+    ++matched;
+    EXPECT_LT(wall.offset_error_m, 0.01) << "wall " << wall.true_id;
+  }
+  EXPECT_EQ(matched, r.map.walls_mapped);
 }
 
 // The same spec gives the same numbers (no clock, fixed seeds); another noise seed gives others,

@@ -119,5 +119,35 @@ TEST(FramesCsv, OneRowPerFrameWithItsStatusAndErrors) {
             "1,REFUSED,0,0.0000,0.0000,0.00000,0.0000,0.0000,0.00000,0.0000,0.000\n");
 }
 
+TEST(SweepJson, EachRunNamesItsScoredWallsWithTheirErrors) {
+  SweepRun run;
+  run.scenario = "office";
+  run.seed = 3;
+  run.result = Good();
+  WallReport off;
+  off.true_id = 7;
+  off.from = {1.0, -1.0};
+  off.to = {4.5, -1.0};
+  off.expected = true;
+  off.matches = 2;
+  off.normal_error_deg = 0.25;
+  off.offset_error_m = 0.0625;
+  WallReport unseen;
+  unseen.true_id = 8;
+  unseen.normal_error_deg = unseen.offset_error_m = std::nan("");
+  run.result.walls = {off, unseen};
+  const std::string json = SweepJson({run}, Targets{}, {});
+  EXPECT_NE(json.find("\"walls\": ["), std::string::npos) << json;
+  EXPECT_NE(json.find("{\"true_id\": 7, \"from\": [1, -1], \"to\": [4.5, -1], \"expected\": true, "
+                      "\"matches\": 2, \"normal_error_deg\": 0.25, \"offset_error_m\": 0.0625}"),
+            std::string::npos)
+      << json;
+  // No match: its errors are null, not a number that would pass for one.
+  EXPECT_NE(json.find("\"true_id\": 8, \"from\": [0, 0], \"to\": [0, 0], \"expected\": false, "
+                      "\"matches\": 0, \"normal_error_deg\": null, \"offset_error_m\": null}"),
+            std::string::npos)
+      << json;
+}
+
 }  // namespace
 }  // namespace relplane::accuracy

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 // The shells' headers share their names, so each is named by its path.
@@ -146,10 +147,22 @@ RunResult RunScenario(const RunSpec& spec) {
   options.visibility.min_wall_length_m = spec.min_wall_length_m;
   r.trajectory = eval::ComputeTrajectoryMetrics(eval::MatchBySeq(estimate, truth), 1.0);
   r.map = eval::ComputeMapMetrics(world, map, truth, options);
+  std::map<int64_t, geometry::Segment2> segments;
+  for (const eval::WallLine& line : eval::WallsOf(world.planes)) segments[line.id] = line.segment;
   for (const eval::WallMatch& wall : r.map.walls) {
     for (double error : wall.endpoint_error_m) {
       if (error < 0.25) r.reached_ends.push_back(error);
     }
+    WallReport& report = r.walls.emplace_back();
+    report.true_id = wall.true_id;
+    if (auto it = segments.find(wall.true_id); it != segments.end()) {
+      report.from = it->second.a;
+      report.to = it->second.b;
+    }
+    report.expected = wall.expected;
+    report.matches = static_cast<int>(wall.mapped_ids.size());
+    report.normal_error_deg = wall.normal_error_deg;
+    report.offset_error_m = wall.offset_error_m;
   }
   return r;
 }

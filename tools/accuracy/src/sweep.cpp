@@ -174,6 +174,19 @@ std::string SweepJson(const std::vector<SweepRun>& runs, const Targets& targets,
     w.Field("normal_error_max_deg", r.map.normal_error_deg.max);
     w.Field("offset_error_max_m", r.map.offset_error_m.max);
     w.Field("endpoint_error_mean_m", r.map.endpoint_error_m.mean);
+    // Each scored true wall with its best match's errors: which wall a run misses on.
+    w.Key("walls").BeginArray();
+    for (const WallReport& wall : r.walls) {
+      w.BeginObject(true);
+      w.Field("true_id", wall.true_id);
+      w.Key("from").BeginArray(true).Value(wall.from.x()).Value(wall.from.y()).EndArray();
+      w.Key("to").BeginArray(true).Value(wall.to.x()).Value(wall.to.y()).EndArray();
+      w.Field("expected", wall.expected).Field("matches", wall.matches);
+      w.Field("normal_error_deg", wall.normal_error_deg);
+      w.Field("offset_error_m", wall.offset_error_m);
+      w.EndObject();
+    }
+    w.EndArray();
     w.EndObject();
   }
   w.EndArray();
