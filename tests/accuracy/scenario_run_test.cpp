@@ -23,11 +23,12 @@ TEST(ScenarioRun, MapsTheStraightHallwayAndGivesEveryFrameAPose) {
   EXPECT_LT(r.trajectory.ate_rmse_m, 0.01);
   EXPECT_GE(r.map.walls_mapped, 3);
   // Every scored wall is reported with where it stands, and every matched one is within 1 cm.
-  ASSERT_EQ(r.walls.size(), r.map.walls.size());
+  ASSERT_EQ(r.wall_segments.size(), r.map.walls.size());
   int matched = 0;
-  for (const WallReport& wall : r.walls) {
-    EXPECT_GE((wall.to - wall.from).norm(), 0.3) << "wall " << wall.true_id;
-    if (wall.matches == 0) continue;
+  for (size_t k = 0; k < r.map.walls.size(); ++k) {
+    const eval::WallMatch& wall = r.map.walls[k];
+    EXPECT_GE(r.wall_segments[k].Length(), 0.3) << "wall " << wall.true_id;
+    if (wall.mapped_ids.empty()) continue;
     ++matched;
     EXPECT_LT(wall.offset_error_m, 0.01) << "wall " << wall.true_id;
   }

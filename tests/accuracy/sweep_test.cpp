@@ -124,18 +124,16 @@ TEST(SweepJson, EachRunNamesItsScoredWallsWithTheirErrors) {
   run.scenario = "office";
   run.seed = 3;
   run.result = Good();
-  WallReport off;
+  eval::WallMatch off;
   off.true_id = 7;
-  off.from = {1.0, -1.0};
-  off.to = {4.5, -1.0};
   off.expected = true;
-  off.matches = 2;
+  off.mapped_ids = {3, 9};
   off.normal_error_deg = 0.25;
   off.offset_error_m = 0.0625;
-  WallReport unseen;
+  eval::WallMatch unseen;  // no match: its errors stay NaN
   unseen.true_id = 8;
-  unseen.normal_error_deg = unseen.offset_error_m = std::nan("");
-  run.result.walls = {off, unseen};
+  run.result.map.walls = {off, unseen};
+  run.result.wall_segments = {{{1.0, -1.0}, {4.5, -1.0}}, {}};
   const std::string json = SweepJson({run}, Targets{}, {});
   EXPECT_NE(json.find("\"walls\": ["), std::string::npos) << json;
   EXPECT_NE(json.find("{\"true_id\": 7, \"from\": [1, -1], \"to\": [4.5, -1], \"expected\": true, "

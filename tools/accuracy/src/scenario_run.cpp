@@ -153,16 +153,8 @@ RunResult RunScenario(const RunSpec& spec) {
     for (double error : wall.endpoint_error_m) {
       if (error < 0.25) r.reached_ends.push_back(error);
     }
-    WallReport& report = r.walls.emplace_back();
-    report.true_id = wall.true_id;
-    if (auto it = segments.find(wall.true_id); it != segments.end()) {
-      report.from = it->second.a;
-      report.to = it->second.b;
-    }
-    report.expected = wall.expected;
-    report.matches = static_cast<int>(wall.mapped_ids.size());
-    report.normal_error_deg = wall.normal_error_deg;
-    report.offset_error_m = wall.offset_error_m;
+    const auto it = segments.find(wall.true_id);
+    r.wall_segments.push_back(it != segments.end() ? it->second : geometry::Segment2{});
   }
   return r;
 }

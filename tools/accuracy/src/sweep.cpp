@@ -176,12 +176,16 @@ std::string SweepJson(const std::vector<SweepRun>& runs, const Targets& targets,
     w.Field("endpoint_error_mean_m", r.map.endpoint_error_m.mean);
     // Each scored true wall with its best match's errors: which wall a run misses on.
     w.Key("walls").BeginArray();
-    for (const WallReport& wall : r.walls) {
+    for (size_t k = 0; k < r.map.walls.size(); ++k) {
+      const eval::WallMatch& wall = r.map.walls[k];
+      const geometry::Segment2 at =
+          k < r.wall_segments.size() ? r.wall_segments[k] : geometry::Segment2{};
       w.BeginObject(true);
       w.Field("true_id", wall.true_id);
-      w.Key("from").BeginArray(true).Value(wall.from.x()).Value(wall.from.y()).EndArray();
-      w.Key("to").BeginArray(true).Value(wall.to.x()).Value(wall.to.y()).EndArray();
-      w.Field("expected", wall.expected).Field("matches", wall.matches);
+      w.Key("from").BeginArray(true).Value(at.a.x()).Value(at.a.y()).EndArray();
+      w.Key("to").BeginArray(true).Value(at.b.x()).Value(at.b.y()).EndArray();
+      w.Field("expected", wall.expected);
+      w.Field("matches", static_cast<int64_t>(wall.mapped_ids.size()));
       w.Field("normal_error_deg", wall.normal_error_deg);
       w.Field("offset_error_m", wall.offset_error_m);
       w.EndObject();

@@ -31,16 +31,6 @@ struct FramePose {
   int planes = 0;                                     // planes the pose used
 };
 
-// One scored true wall and how the map has it: which wall a run's worst error is on.
-struct WallReport {
-  int64_t true_id = 0;
-  Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();  // from above
-  bool expected = false;          // in view of the true trajectory (or matched)
-  int matches = 0;                // mapped planes matched to it
-  double normal_error_deg = 0.0;  // of the best match; NaN without one
-  double offset_error_m = 0.0;
-};
-
 struct RunResult {
   eval::TrajectoryMetrics trajectory;
   eval::MapMetrics map;
@@ -52,7 +42,9 @@ struct RunResult {
   int64_t motion_model_frames = 0;  // poses with status MOTION_MODEL (§II.E)
   int64_t rejected_frames = 0;      // a conversion refused the message: counted, not mapped
   std::vector<FramePose> poses;     // every frame's
-  std::vector<WallReport> walls;    // every scored true wall, in the evaluation's order
+  // Where each true wall of map.walls stands, seen from above (same order): which wall a run's
+  // worst error is on.
+  std::vector<geometry::Segment2> wall_segments;
 };
 
 // Reads every section `spec` gives the services, as RunScenario does, and runs nothing. Throws as RunScenario.
