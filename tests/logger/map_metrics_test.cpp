@@ -93,6 +93,33 @@ TEST(MapMetrics, AMappedDoorJambIsNeitherScoredNorSpurious) {
   EXPECT_EQ(m.spurious_ids, std::vector<int64_t>{41});
 }
 
+TEST(MapMetrics, APilasterFaceMappedOnItGoesToTheFaceNotTheLongerWallBehind) {
+  MapSnapshot world = Room();
+  world.planes.push_back(Wall(7, {1.8, -1.7}, {2.3, -1.7}));  // a face 0.3 m out of the south wall
+  MapSnapshot map = PerfectMap();
+  // The face mapped 1 cm off and a little long: it lies along more of the south wall than of
+  // the face, but it is the face.
+  map.planes.push_back(Wall(40, {1.78, -1.71}, {2.32, -1.71}));
+  const MapMetrics m = Score(map, world);
+  ASSERT_EQ(m.walls.size(), 5u);
+  EXPECT_EQ(m.walls[0].mapped_ids, std::vector<int64_t>{10});
+  EXPECT_EQ(m.walls[4].mapped_ids, std::vector<int64_t>{40});
+  EXPECT_NEAR(m.walls[4].offset_error_m, 0.01, 1e-9);
+  EXPECT_EQ(m.duplicates, 0);
+  EXPECT_LT(m.offset_error_m.max, 0.02);
+}
+
+TEST(MapMetrics, AWallMappedPastAPilasterStillGoesToTheWall) {
+  MapSnapshot world = Room();
+  world.planes.push_back(Wall(7, {1.8, -1.7}, {2.3, -1.7}));
+  MapSnapshot map = PerfectMap();
+  map.planes[0] = Wall(10, {-1, -1.8}, {5, -1.8});  // the south wall, 0.2 m off: nearer the face
+  const MapMetrics m = Score(map, world);
+  EXPECT_EQ(m.walls[0].mapped_ids, std::vector<int64_t>{10});
+  EXPECT_TRUE(m.walls[4].mapped_ids.empty());
+  EXPECT_NEAR(m.walls[0].offset_error_m, 0.2, 1e-9);
+}
+
 TEST(MapMetrics, PlanesMatchingNoWallAreSpurious) {
   MapSnapshot map = PerfectMap();
   map.planes.push_back(Wall(30, {1, -1}, {2, 1}));        // diagonal across the room

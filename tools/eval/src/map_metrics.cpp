@@ -214,18 +214,30 @@ MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
   m.true_walls = static_cast<int64_t>(true_walls.size());
   m.mapped_walls = static_cast<int64_t>(mapped.size());
 
-  // Each mapped wall goes to the true wall it overlaps most (ties: the nearer line).
+  // Each mapped wall goes to the nearest line among the true walls lying along most of it, and
+  // to the true wall it overlaps most when none does. Overlap alone gave a pilaster's 0.4 m
+  // face, mapped 2 cm off, to the wall 0.3 m behind it, which it overlapped 1 cm longer; a long
+  // wall passing a pilaster still goes to the wall, as the face lies along little of it.
   std::vector<std::vector<std::pair<Candidate, int64_t>>> matches(true_walls.size());
   for (const WallLine& w : mapped) {
+    const double along_most = 0.5 * w.segment.Length();
     int best = -1;
     Candidate best_c;
+    bool best_along = false;
     for (size_t t = 0; t < true_walls.size(); ++t) {
       const Candidate c = Compare(true_walls[t], w, options.match);
       if (!c.ok) continue;
-      if (best < 0 || c.overlap_m > best_c.overlap_m ||
-          (c.overlap_m == best_c.overlap_m && c.offset_m < best_c.offset_m)) {
+      const bool along = c.overlap_m >= along_most;
+      const bool better =
+          best < 0 || (along && !best_along) ||
+          (along == best_along &&
+           (along ? c.offset_m < best_c.offset_m
+                  : c.overlap_m > best_c.overlap_m ||
+                        (c.overlap_m == best_c.overlap_m && c.offset_m < best_c.offset_m)));
+      if (better) {
         best = static_cast<int>(t);
         best_c = c;
+        best_along = along;
       }
     }
     if (best < 0) {
