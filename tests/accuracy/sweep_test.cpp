@@ -134,7 +134,20 @@ TEST(SweepJson, EachRunNamesItsScoredWallsWithTheirErrors) {
   unseen.true_id = 8;
   run.result.map.walls = {off, unseen};
   run.result.wall_segments = {{{1.0, -1.0}, {4.5, -1.0}}, {}};
+  // A 4 m leg along +x measured 0.1 m short.
+  for (int i = 0; i <= 4; ++i) {
+    FramePose& p = run.result.poses.emplace_back();
+    p.seq = i;
+    p.status = 0;
+    p.true_x = i;
+    p.x = 0.975 * i;
+  }
   const std::string json = SweepJson({run}, Targets{}, {});
+  EXPECT_NE(json.find("\"along_track_percent\": -2.5"), std::string::npos) << json;
+  EXPECT_NE(
+      json.find("{\"first_seq\": 0, \"last_seq\": 4, \"length_m\": 4, \"along_error_m\": -0.1"),
+      std::string::npos)
+      << json;
   EXPECT_NE(json.find("\"walls\": ["), std::string::npos) << json;
   EXPECT_NE(json.find("{\"true_id\": 7, \"from\": [1, -1], \"to\": [4.5, -1], \"expected\": true, "
                       "\"matches\": 2, \"normal_error_deg\": 0.25, \"offset_error_m\": 0.0625}"),

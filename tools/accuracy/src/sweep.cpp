@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "relplane/accuracy/legs.hpp"
 #include "relplane/eval/json_writer.hpp"
 
 namespace relplane::accuracy {
@@ -188,6 +189,17 @@ std::string SweepJson(const std::vector<SweepRun>& runs, const Targets& targets,
       w.Field("matches", static_cast<int64_t>(wall.mapped_ids.size()));
       w.Field("normal_error_deg", wall.normal_error_deg);
       w.Field("offset_error_m", wall.offset_error_m);
+      w.EndObject();
+    }
+    w.EndArray();
+    // The straight legs' along-track errors: a distance driven measured short or long.
+    const std::vector<Leg> legs = StraightLegs(r.poses);
+    w.Field("along_track_percent", AlongTrackPercent(legs));
+    w.Key("legs").BeginArray();
+    for (const Leg& leg : legs) {
+      w.BeginObject(true);
+      w.Field("first_seq", leg.first_seq).Field("last_seq", leg.last_seq);
+      w.Field("length_m", leg.length_m).Field("along_error_m", leg.along_error_m);
       w.EndObject();
     }
     w.EndArray();
