@@ -134,6 +134,24 @@ TEST(SweepJson, EachRunNamesItsScoredWallsWithTheirErrors) {
   unseen.true_id = 8;
   run.result.map.walls = {off, unseen};
   run.result.wall_segments = {{{1.0, -1.0}, {4.5, -1.0}}, {}};
+  const std::string json = SweepJson({run}, Targets{}, {});
+  EXPECT_NE(json.find("\"walls\": ["), std::string::npos) << json;
+  EXPECT_NE(json.find("{\"true_id\": 7, \"from\": [1, -1], \"to\": [4.5, -1], \"expected\": true, "
+                      "\"matches\": 2, \"normal_error_deg\": 0.25, \"offset_error_m\": 0.0625}"),
+            std::string::npos)
+      << json;
+  // No match: its errors are null, not a number that would pass for one.
+  EXPECT_NE(json.find("\"true_id\": 8, \"from\": [0, 0], \"to\": [0, 0], \"expected\": false, "
+                      "\"matches\": 0, \"normal_error_deg\": null, \"offset_error_m\": null}"),
+            std::string::npos)
+      << json;
+}
+
+TEST(SweepJson, EachRunGivesItsStraightLegsAndTheirAlongTrackError) {
+  SweepRun run;
+  run.scenario = "office";
+  run.seed = 3;
+  run.result = Good();
   // A 4 m leg along +x measured 0.1 m short.
   for (int i = 0; i <= 4; ++i) {
     FramePose& p = run.result.poses.emplace_back();
@@ -147,16 +165,6 @@ TEST(SweepJson, EachRunNamesItsScoredWallsWithTheirErrors) {
   EXPECT_NE(
       json.find("{\"first_seq\": 0, \"last_seq\": 4, \"length_m\": 4, \"along_error_m\": -0.1"),
       std::string::npos)
-      << json;
-  EXPECT_NE(json.find("\"walls\": ["), std::string::npos) << json;
-  EXPECT_NE(json.find("{\"true_id\": 7, \"from\": [1, -1], \"to\": [4.5, -1], \"expected\": true, "
-                      "\"matches\": 2, \"normal_error_deg\": 0.25, \"offset_error_m\": 0.0625}"),
-            std::string::npos)
-      << json;
-  // No match: its errors are null, not a number that would pass for one.
-  EXPECT_NE(json.find("\"true_id\": 8, \"from\": [0, 0], \"to\": [0, 0], \"expected\": false, "
-                      "\"matches\": 0, \"normal_error_deg\": null, \"offset_error_m\": null}"),
-            std::string::npos)
       << json;
 }
 
