@@ -69,6 +69,18 @@ void BM_Synthetic160x120Path(benchmark::State& state) {
   static const auto frames = OfficePath(160, 120);
   Run(state, frames, Options{}, false);
 }
+// With the wall-end estimate and pieceless planes dropped (options.hpp, off by default): the
+// cost of both, on the noise-free frames where pieceless planes are most common.
+Options WallEndOptions() {
+  Options o;
+  o.wall_end_estimate = true;
+  o.drop_pieceless_planes = true;
+  return o;
+}
+void BM_Synthetic160x120PathWallEnds(benchmark::State& state) {
+  static const auto frames = OfficePath(160, 120);
+  Run(state, frames, WallEndOptions(), false);
+}
 void BM_Synthetic160x120Cold(benchmark::State& state) {
   static const auto frames = OfficeFrames(160, 120, false);
   Run(state, frames, Options{}, true);
@@ -87,6 +99,10 @@ void BM_Unorganized640x480Cold(benchmark::State& state) {
 void BM_Organized640x480Stream(benchmark::State& state) {
   static const auto frames = OfficeFrames(640, 480, false);
   Run(state, frames, Options{}, false);
+}
+void BM_Organized640x480StreamWallEnds(benchmark::State& state) {
+  static const auto frames = OfficeFrames(640, 480, false);
+  Run(state, frames, WallEndOptions(), false);
 }
 void BM_Unorganized320x240Stream(benchmark::State& state) {
   static const auto frames = OfficeFrames(320, 240, true);
@@ -128,10 +144,12 @@ void BM_Kinect640x480Cold(benchmark::State& state) {
   BENCHMARK(fn)->Unit(benchmark::kMillisecond)->Repetitions(9)->ReportAggregatesOnly(true)
 SEGMENTER_BENCHMARK(BM_Synthetic160x120Stream);
 SEGMENTER_BENCHMARK(BM_Synthetic160x120Path);
+SEGMENTER_BENCHMARK(BM_Synthetic160x120PathWallEnds);
 SEGMENTER_BENCHMARK(BM_Synthetic160x120Cold);
 SEGMENTER_BENCHMARK(BM_Unorganized640x480Stream);
 SEGMENTER_BENCHMARK(BM_Unorganized640x480Cold);
 SEGMENTER_BENCHMARK(BM_Organized640x480Stream);
+SEGMENTER_BENCHMARK(BM_Organized640x480StreamWallEnds);
 SEGMENTER_BENCHMARK(BM_Unorganized320x240Stream);
 SEGMENTER_BENCHMARK(BM_Kinect640x480Stream);
 SEGMENTER_BENCHMARK(BM_Kinect640x480Cold);

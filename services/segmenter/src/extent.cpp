@@ -7,6 +7,8 @@
 #include "piece_grid.hpp"
 #include "relplane/segmenter/hull.hpp"
 #include "relplane/segmenter/merge_pieces.hpp"
+#include "relplane/segmenter/spacing.hpp"
+#include "relplane/segmenter/wall_ends.hpp"
 
 namespace relplane::segmenter {
 namespace {
@@ -38,6 +40,7 @@ struct Piece {
   float cell_spread = 0.0f, normal_spread = 0.0f;
   Eigen::Vector3f u, v;
   float a_min = kInf, a_max = -kInf, b_min = kInf, b_max = -kInf;
+  EndBuffer lo_end, hi_end;  // a vertical piece's points furthest out along u each way
 };
 
 // Least-squares refit of a piece from its moments about `origin`; normal towards the sensor.
@@ -195,6 +198,8 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
       p.a_max = std::max(p.a_max, ab.x());
       p.b_min = std::min(p.b_min, ab.y());
       p.b_max = std::max(p.b_max, ab.y());
+      p.lo_end.Add(-ab.x(), ab.y());
+      p.hi_end.Add(ab.x(), ab.y());
       return;
     }
     if (ab.x() < c.lo_a.x()) c.lo_a = ab;
@@ -226,6 +231,48 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
     const uint8_t mode = w->mode[cell];
     if (mode == 0 || (mode == kTrimPoints && phase != 0)) continue;
     visit(i, cell, mode, phase == 0);
+  }
+}
+
+// m: a spacing of more than this at a wall's end is a view so grazing that few of the wall's
+// samples are near the end: the end moves out by at most half of it.
+constexpr float kMaxEndSpacing = 0.3f;
+// An end this close to the cloud's furthest point, as a share of its range, is a range cut.
+constexpr float kRangeCutShare = 0.98f;
+
+// Each vertical piece's ends along its wall from its points furthest out (EstimateEnd): the
+// sensor's columns of rays land `column spacing` apart along the wall at the end (SampleSpacing
+// at its horizontal range), its rows the step times that range apart up it. `ray_step`: the
+// sensor's own angular step; `share`: of its rays, the described points; `max_spacing` bounds
+// the spacing at a grazing angle. Nothing moves without a step.
+// An end whose furthest point lies at `range_cut` or beyond is where the sensor's range ran out:
+// an arc across the wall, furthest at the sensor's height, not a column of samples, so it keeps
+// its extreme point.
+void EstimateWallEnds(float ray_step, float share, float max_spacing, float range_cut,
+                      std::vector<Piece>* pieces) {
+  if (!(ray_step > 0.0f)) return;
+  for (Piece& p : *pieces) {
+    if (!p.kept || !p.vertical || p.hi_end.Size() == 0) continue;
+    const float mid = 0.5f * (p.b_min + p.b_max);
+    // The buffer's furthest sample, at coordinate `sign * out` along u.
+    auto at_range_cut = [&](const EndBuffer& buffer, float sign) {
+      const EndBuffer::Sample* far = std::max_element(
+          buffer.begin(), buffer.end(),
+          [](const EndBuffer::Sample& x, const EndBuffer::Sample& y) { return x.out < y.out; });
+      return (p.out.centroid + sign * far->out * p.u + far->up * p.v).norm() >= range_cut;
+    };
+    auto sampling = [&](float a) {
+      const Eigen::Vector3f end = p.out.centroid + a * p.u + mid * p.v;
+      const float along_v = end.dot(p.v);
+      const float range = std::sqrt(std::max(0.0f, end.squaredNorm() - along_v * along_v));
+      EndSampling s;
+      s.column_spacing = std::min(max_spacing, SampleSpacing(ray_step, range, p.out.d));
+      s.row_spacing = ray_step * range;
+      s.share = share;
+      return s;
+    };
+    if (!at_range_cut(p.hi_end, 1.0f)) p.a_max = EstimateEnd(p.hi_end, sampling(p.a_max));
+    if (!at_range_cut(p.lo_end, -1.0f)) p.a_min = -EstimateEnd(p.lo_end, sampling(p.a_min));
   }
 }
 
@@ -297,8 +344,10 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
                                           const std::vector<uint8_t>& ambiguous,
                                           const std::vector<EmPlane>& planes,
                                           const Options& options, float angular_step,
+                                          float ray_step, float share,
                                           std::vector<int32_t>* piece_labels,
-                                          PieceWorkspace* workspace) {
+                                          PieceWorkspace* workspace,
+                                          std::vector<uint8_t>* plane_has_piece) {
   PieceWorkspace local;
   PieceWorkspace::Buffers& w = workspace ? workspace->Get() : local.Get();
   if (piece_labels) piece_labels->assign(cloud.size(), -1);
@@ -325,9 +374,25 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
     p.cell_spread = half * (std::fabs(p.out.normal.dot(g.u)) + std::fabs(p.out.normal.dot(g.v)));
     p.normal_spread = std::fabs(p.out.normal.dot(g.n));
   }
+  if (plane_has_piece) {
+    plane_has_piece->assign(planes.size(), 0);
+    for (const Piece& p : pieces) {
+      if (p.kept) (*plane_has_piece)[p.plane] = 1;
+    }
+  }
   MarkOuterCells(static_cast<int>(pieces.size()), &w);
   PlanSecondPass(&w, &pieces);
   TrimAndExtend(cloud, options, &w, &pieces, piece_labels);
+  if (options.wall_end_estimate) {
+    // The cloud's furthest point is about the sensor's range (a wall cut by it reaches it).
+    float furthest2 = 0.0f;
+    for (size_t i = 0; i < cloud.size(); ++i) {
+      furthest2 = std::max(furthest2, cloud.x[i] * cloud.x[i] + cloud.y[i] * cloud.y[i] +
+                                          cloud.z[i] * cloud.z[i]);
+    }
+    EstimateWallEnds(ray_step, std::clamp(share, 1e-3f, 1.0f), kMaxEndSpacing,
+                     kRangeCutShare * std::sqrt(furthest2), &pieces);
+  }
   std::vector<PieceStats> described;
   std::vector<int32_t> index;
   Describe(options.ray_noise_fit, static_cast<double>(options.sigma_max) * options.sigma_max, &w,

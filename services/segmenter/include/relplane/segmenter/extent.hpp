@@ -38,6 +38,10 @@ class PieceWorkspace {
 // centroid, RMS, support count and extent polygon (a rectangle aligned with the vertical for a
 // vertical plane, the convex hull otherwise); its normal points towards the sensor at the
 // origin. Pieces come back in order of decreasing support.
+// A vertical piece's ends along its wall are estimated from its points furthest out
+// (EstimateWallEnds, wall_ends.hpp) when options.wall_end_estimate is set and `ray_step` (the
+// sensor's own angular step, radians) is known; `share` is the described points' share of the
+// sensor's samples (a subsampled cloud: below 1).
 // `ambiguous` (from AssignPoints, may be empty) marks points on the strip where two planes
 // meet: they belong to a piece but cannot connect pieces. `piece_labels` (optional) receives
 // each point's index into the result, -1 for points in no piece. `workspace` (optional) keeps
@@ -46,7 +50,9 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
                                           const std::vector<uint8_t>& ambiguous,
                                           const std::vector<EmPlane>& planes,
                                           const Options& options, float angular_step = 0.0f,
+                                          float ray_step = 0.0f, float share = 1.0f,
                                           std::vector<int32_t>* piece_labels = nullptr,
-                                          PieceWorkspace* workspace = nullptr);
+                                          PieceWorkspace* workspace = nullptr,
+                                          std::vector<uint8_t>* plane_has_piece = nullptr);
 
 }  // namespace relplane::segmenter
