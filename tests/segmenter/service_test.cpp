@@ -36,6 +36,14 @@ TEST(ServiceOptions, ReadsItsSectionAndRefusesUnknownOrBadKeys) {
   EXPECT_THROW(FromYaml("segmenter:\n  cell_size: -1\n"), config::ConfigError);
   EXPECT_THROW(FromYaml("segmenter:\n  sigma_min: 0.05\n  sigma_max: 0.01\n"), config::ConfigError);
   EXPECT_THROW(FromYaml("segmenter:\n  min_points: many\n"), config::ConfigError);
+  // The wall-end options (off by default) are turned on from the scenario or with --set.
+  const ServiceOptions ends =
+      FromYaml("segmenter:\n  wall_end_estimate: true\n  drop_pieceless_planes: true\n");
+  EXPECT_FALSE(Options{}.wall_end_estimate);
+  EXPECT_FALSE(Options{}.drop_pieceless_planes);
+  EXPECT_TRUE(ends.segmenter.wall_end_estimate);
+  EXPECT_TRUE(ends.segmenter.drop_pieceless_planes);
+  EXPECT_THROW(FromYaml("segmenter:\n  wall_end_estimate: sometimes\n"), config::ConfigError);
 }
 
 point_cloud_t Message(const Cloud& c, int64_t seq) {
