@@ -182,6 +182,7 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
   const float* x = cloud.x.data();
   const float* y = cloud.y.data();
   const float* z = cloud.z.data();
+  const bool keep_ends = options.wall_end_estimate;  // EstimateWallEnds reads them
   // Point i of `cell` in a cell with a mode; `fitted`: it entered the cell's moments.
   auto visit = [&](size_t i, int32_t cell, uint8_t mode, bool fitted) {
     Piece& p = (*pieces)[w->piece_of[cell]];
@@ -198,8 +199,10 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
       p.a_max = std::max(p.a_max, ab.x());
       p.b_min = std::min(p.b_min, ab.y());
       p.b_max = std::max(p.b_max, ab.y());
-      p.lo_end.Add(-ab.x(), ab.y());
-      p.hi_end.Add(ab.x(), ab.y());
+      if (keep_ends) {
+        p.lo_end.Add(-ab.x(), ab.y());
+        p.hi_end.Add(ab.x(), ab.y());
+      }
       return;
     }
     if (ab.x() < c.lo_a.x()) c.lo_a = ab;

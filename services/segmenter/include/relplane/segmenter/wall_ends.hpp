@@ -2,10 +2,10 @@
 // Where a wall's ends lie, from its points furthest out along it. The sensor samples a wall on a
 // grid of rays, so the last sample short of an end lands anywhere up to one ray spacing inside
 // it, and the noise along the rays spreads each column of samples along the wall: the extreme
-// point is short of the end by half a spacing on average far away (grazing samples 5-10 cm
-// apart) and, over the column's many rows, past it by about 2.4 sigma nearby. Either way the
-// error has one sign wherever the wall is seen from, so a §II.C static edge averaged over its
-// sightings keeps it and a leg of the route comes out short.
+// point is short of the end by half a spacing on average far off (grazing samples 5-40 cm
+// apart) and, over the column's many rows, past it by 2-3 sigma nearby. The sign of the error
+// goes with the distance the end is seen from, so a §II.C static edge fitted from far off and
+// localised against from nearby sets the pose back along the route.
 
 #include <array>
 #include <cmath>
@@ -43,13 +43,13 @@ struct EndSampling {
   float share = 1.0f;           // of the sensor's samples, in (0, 1]
 };
 
-// The end's coordinate outwards: where the points run out, less the noise's spread and plus
-// half a column spacing. The k-th point from the outside with k half of one column's points
-// (the column's height over its row spacing) sits at the last column whatever the noise, and
-// where columns are denser than the noise it sits half a spacing inside the edge of the
-// points' spread; half a column spacing then puts it where the next column would be cut off on
-// average; where columns are denser than the noise the smear leaves the estimate up to 0.4
-// sigma out. The plain extreme when the spacing is unknown (0), -infinity with no points.
+// The end's coordinate outwards: the k-th point from the outside, k half of one column's points
+// (the column's height over its row spacing, times the share), plus half a column spacing.
+// Where the columns lie further apart than the noise spreads them, the k-th point sits at the
+// last column whatever the noise, and half a spacing puts the end where the next column would
+// have been cut off on average. Where they are denser, it sits about half a spacing inside the
+// edge of the points' spread, and the estimate lands within 0.4 sigma of the edge. The plain
+// extreme when a spacing is unknown (0); -infinity with no points.
 float EstimateEnd(const EndBuffer& buffer, const EndSampling& sampling);
 
 }  // namespace relplane::segmenter
