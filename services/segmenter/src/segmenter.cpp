@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <utility>
 
 #include "relplane/segmenter/assign.hpp"
 #include "relplane/segmenter/extent.hpp"
@@ -203,9 +204,9 @@ Result Segmenter::Segment(const Cloud& input) {
     for (size_t j = 0; j < planes.size(); ++j) {
       if (has_piece[j]) surfaces.push_back(planes[j]);
     }
-    planes.swap(surfaces);
+    result.pieceless_planes = static_cast<int>(planes.size() - surfaces.size());
+    planes = std::move(surfaces);
     result.em_planes = static_cast<int>(planes.size());
-    result.pieceless_planes = static_cast<int>(surfaces.size() - planes.size());
     describe_all();
   }
   const auto assigned =

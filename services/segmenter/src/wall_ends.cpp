@@ -1,7 +1,6 @@
 #include "relplane/segmenter/wall_ends.hpp"
 
 #include <algorithm>
-#include <functional>
 
 namespace relplane::segmenter {
 namespace {

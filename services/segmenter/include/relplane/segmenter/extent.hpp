@@ -39,9 +39,10 @@ class PieceWorkspace {
 // vertical plane, the convex hull otherwise); its normal points towards the sensor at the
 // origin. Pieces come back in order of decreasing support.
 // A vertical piece's ends along its wall are estimated from its points furthest out
-// (EstimateWallEnds, wall_ends.hpp) when options.wall_end_estimate is set and `ray_step` (the
+// (EstimateEnd, wall_ends.hpp) when options.wall_end_estimate is set and `ray_step` (the
 // sensor's own angular step, radians) is known; `share` is the described points' share of the
-// sensor's samples (a subsampled cloud: below 1).
+// sensor's samples (a subsampled cloud: below 1). `plane_has_piece` (optional) receives, for
+// each of `planes`, whether it formed a kept piece.
 // `ambiguous` (from AssignPoints, may be empty) marks points on the strip where two planes
 // meet: they belong to a piece but cannot connect pieces. `piece_labels` (optional) receives
 // each point's index into the result, -1 for points in no piece. `workspace` (optional) keeps
