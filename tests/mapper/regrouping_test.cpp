@@ -147,6 +147,33 @@ TEST(RelativeMap, AWallsOrientationComesFromAllItsComparisonsNotOneChainThroughA
 // the sensor's rays last hit it), for 60 iterations; B and C are seen exactly, for 150. The
 // relative map keeps, with each placement, the variance its chain of pairings adds up to: the pose
 // graph weighs its ties by it.
+// A member known by its line only (T, on the left, both ends cut by the view) takes it from a
+// parallel member (P, on the right, 4 m across) before a crossing one (A, across the way, the
+// first member by id): a parallel line's offset is the difference of two fitted offsets, a
+// crossing one's is measured from the crossing wall's end, where it is seen. A's ends are seen
+// 2 cm either side in turn for 100 iterations and then 1-3 cm past for the 50 that T is in view
+// (the sampling of a corner's end): from A, T's line came out 1.3 cm off its 4 m from P.
+TEST(RelativeMap, ALineOnlyMemberIsPlacedFromAParallelWallBeforeACrossingOne) {
+  MapperOptions options;
+  MapperState state;
+  const int64_t a = 0, p = 1, t = 2;
+  for (int64_t k = 0; k < 150; ++k) {
+    const double along = k < 100 ? (k % 2 == 0 ? 0.02 : -0.02) : (k % 2 == 0 ? 0.03 : 0.01);
+    const Vector2d jitter(0.0, along);
+    See(state, a, k, kA0 + jitter, kA1 + jitter);
+    See(state, p, k, kC0, kC1);
+    if (k >= 100) See(state, t, k, kB0, kB1, true);
+  }
+  AddGroup(state, {a, p, t}, 0);
+  CompareMembers(state, state.groups[0], 149, options);
+  const RelativeMap map = BuildRelativeMap(state.groups[0], state);
+  ASSERT_EQ(map.members.count(p) + map.members.count(t), 2u);
+  const Placement& right = map.members.at(p);
+  const Placement& left = map.members.at(t);
+  ASSERT_EQ(left.known, Known::kLine);
+  EXPECT_NEAR(std::abs(NormalOf(right.alpha).dot(left.point - right.point)), 4.0, 0.001);
+}
+
 TEST(Regrouping, APlacementCarriesTheSpreadOfThePairingsThatPlacedIt) {
   MapperOptions options;
   MapperState state;

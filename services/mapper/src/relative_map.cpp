@@ -11,6 +11,7 @@ namespace {
 using Eigen::Vector2d;
 
 constexpr double kSpreadScale = 0.005;  // m
+constexpr double kParallelSin = 0.17;   // two lines this close in orientation are parallel
 
 Eigen::Matrix2d Rot(double a) { return Eigen::Rotation2Dd(a).toRotationMatrix(); }
 
@@ -68,7 +69,7 @@ bool PlaceLine(const Placement& p, int64_t from, int64_t to, const MapperState& 
   if (c == nullptr) return false;
   const DirectedStats& s = c->From(from);
   const double dalpha = c->DeltaAlpha(from);
-  const bool parallel = std::abs(std::sin(dalpha)) < 0.17;
+  const bool parallel = std::abs(std::sin(dalpha)) < kParallelSin;
   double offset = 0.0;
   bool ok = p.known == Known::kPoint && s.Line(p.ref, &offset);
   if (!ok && p.known == Known::kLine && parallel) ok = s.Line(0, &offset) || s.Line(1, &offset);
@@ -79,6 +80,12 @@ bool PlaceLine(const Placement& p, int64_t from, int64_t to, const MapperState& 
   out->known = Known::kLine;
   out->variance = p.variance;
   return true;
+}
+
+// Are `from` and `to` parallel by their comparison (the line placement then needs no edge)?
+bool ParallelTo(int64_t from, int64_t to, const MapperState& state) {
+  const Comparison* c = state.FindComparison(from, to);
+  return c != nullptr && std::abs(std::sin(c->DeltaAlpha(from))) < kParallelSin;
 }
 
 // The orientation of `to` only, through any comparison with a common interval.
@@ -94,22 +101,34 @@ bool PlaceAngle(const Placement& p, int64_t from, int64_t to, const MapperState&
 }
 
 // Members no point placement reached: by line where one is steady, else by orientation.
-// Records the links used in `order` when given.
+// Records the links used in `order` when given. A parallel member's line comes first: their
+// offset is the difference of two fitted offsets, whereas a crossing member's line is measured
+// from its edge, where that edge is seen. A corner's end is seen within a column spacing either
+// side of the corner, 1-2 cm 2.5 m away, from frame to frame (the segmenter's wall-end estimate);
+// taken from the first member by id, a crossing wall, a room's far wall came out 3.7 mm off
+// within ten frames while the wall parallel to it across the door was in the same group, and the
+// pose and every wall after it followed (noise-free office: ATE 7 mm, under 0.5 mm from the parallel
+// wall). So: every line a parallel member gives, then one crossing line, and again.
 void PlaceRest(const Group& group, const MapperState& state, RelativeMap* map,
                ChainOrder* order) {
-  for (bool changed = true; changed;) {
-    changed = false;
+  auto place_lines = [&](bool parallel_only) {
+    bool placed = false;
     for (int64_t to : group.members) {
       if (map->members.count(to)) continue;
       for (const auto& [from, p] : map->members) {
         Placement q;
+        if (parallel_only && !ParallelTo(from, to, state)) continue;
         if (!PlaceLine(p, from, to, state, &q)) continue;
         map->members[to] = q;
         if (order != nullptr) order->links.push_back({from, to});
-        changed = true;
+        placed = true;
+        if (!parallel_only) return true;
         break;
       }
     }
+    return placed;
+  };
+  while (place_lines(true) || place_lines(false)) {
   }
   for (int64_t to : group.members) {
     if (map->members.count(to)) continue;
