@@ -106,9 +106,9 @@ bool PlaceAngle(const Placement& p, int64_t from, int64_t to, const MapperState&
 // from its edge, where that edge is seen. A corner's end is seen within a column spacing either
 // side of the corner, 1-2 cm 2.5 m away, from frame to frame (the segmenter's wall-end estimate);
 // taken from the first member by id, a crossing wall, a room's far wall came out 3.7 mm off
-// within ten frames while the wall parallel to it across the door was in the same group, and the
-// pose and every wall after it followed (noise-free office: ATE 7 mm, under 0.5 mm from the parallel
-// wall). So: every line a parallel member gives, then one crossing line, and again.
+// within ten frames while the wall parallel to it across the door was in the same group, and
+// the pose and every wall after it followed (noise-free office: ATE 7 mm, under 0.5 mm from the
+// parallel wall). So: every line a parallel member gives, then one crossing line, and again.
 void PlaceRest(const Group& group, const MapperState& state, RelativeMap* map,
                ChainOrder* order) {
   auto place_lines = [&](bool parallel_only) {
