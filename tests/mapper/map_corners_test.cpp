@@ -106,6 +106,21 @@ TEST(MapCorners, AShortPieceIsLengthenedToACornerButNeverCutBack) {
   ExpectAt(Lo(planes[2]), {5, -0.03});
 }
 
+TEST(MapCorners, AShortPieceIsCutBackToACornerWhereTheCrossingWallEndsToo) {
+  // An 8.5 cm piece (a wall drawn from its last sighting, the rest cut by the view) reaching
+  // 1.5 cm past the line of a wall that ends where they meet: an L corner. The same piece past
+  // a wall that goes on through the meeting point keeps its end (as above).
+  std::vector<MappedPlane> corner = {Mapped(1, {2.43, 2}, {2.515, 2}),
+                                     Mapped(2, {2.5, 0.6}, {2.5, 2})};
+  SnapEndsToCorners(&corner, kRadius);
+  ExpectAt(Hi(corner[0]), {2.5, 2});
+  ExpectAt(Lo(corner[0]), {2.43, 2});
+  std::vector<MappedPlane> through = {Mapped(1, {2.43, 2}, {2.515, 2}),
+                                      Mapped(2, {2.5, 0.6}, {2.5, 3.4})};
+  SnapEndsToCorners(&through, kRadius);
+  ExpectAt(Hi(through[0]), {2.515, 2});
+}
+
 TEST(MapCorners, ALineThroughAWallsMiddleIsNotItsCorner) {
   // A 0.2 m door jamb across a thin partition's line, which ends at the jamb's middle: the
   // partition meets the jamb there, but neither jamb end is cut back to it.

@@ -24,8 +24,9 @@ struct WallSegment {
 // they cross is the corner itself. Of several crossing walls the nearest line wins; every move
 // is worked out on the walls as given, so the result does not depend on their order. Walls
 // shorter than 2 radii are only lengthened (the line crossing a short piece may be another
-// surface's), and an end is cut back by at most a quarter of its wall (a line through its
-// middle is not its corner). A radius of 0 moves nothing. Returns how many ends moved.
+// surface's) unless the crossing wall ends there too (an L corner), and an end is cut back by
+// at most a quarter of its wall (a line through its middle is not its corner). A radius of 0
+// moves nothing. Returns how many ends moved.
 int SnapSegmentEnds(std::vector<WallSegment>* walls, double radius);
 
 // SnapSegmentEnds on the published map's walls (the planes with four vertices in Mapper::Map's
