@@ -72,8 +72,8 @@ struct Options {
   // A vertical piece's ends where its samples put them on average, not at its extreme points
   // (wall_ends.hpp): the extreme lands up to a ray spacing short far off and past the end by
   // the noise nearby. Off by default for now: with both options below the mapper meets its
-  // targets on more seeded runs at 1 cm noise, but one noise-free office wall end is 1.5 cm
-  // off and office_other_sensor's seed 4 misses (README.md, "Wall ends from the segmenter").
+  // targets on more seeded runs at 1 cm noise, but office_other_sensor's seed 4 misses
+  // (README.md, "Wall ends from the segmenter").
   bool wall_end_estimate = false;
   float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
   // Take the sensor's noise along its rays out of each piece's fit (FitOutRayNoise in
