@@ -125,6 +125,72 @@ TEST(GlobalMap, AShortPieceMeasuredFarAlongItsLineDoesNotMoveItsGroupAlongTheHal
   EXPECT_NEAR(placed.yaw, 0.0, 1e-3);
 }
 
+TEST(GlobalMap, AnEdgeTieFarFromTheGroupsPriorIsLeftOutWhileAnotherAgrees) {
+  // A hallway along x seen from (7, 0): its side wall in two pieces, A from x = 9 to 11 and B
+  // from x = 12 to 15 (y = -1), and a recess side C at x = 11 (y from -1 to -1.3) between them.
+  // Group 0 mapped A with both ends and B by its end at x = 12. Group 1 holds A, B and C, its
+  // basis C, which the global map does not have yet: A and B are its links, parallel, so their
+  // static ends place it along the hallway. Its relative map paired A at the wrong end (A's far
+  // end put at C), 2 m from where A's near end and B's end say; the group was made where it is
+  // (its prior, from C as seen then, agrees with B). The group must be placed where B puts it,
+  // not halfway: the mean of the two moved it 1 m.
+  MapperState state;
+  state.first_iteration = 0;
+  const geometry::Pose2 from{7.0, 0.0, 0.0};
+  for (int64_t k = 0; k < 3; ++k) {
+    state.poses[k] = from;
+    state.fixed_poses.insert(k);
+    const Observation seen[] = {testing::SeenAlongX({9, -1}, {11, -1}, 7.0, k),
+                                testing::SeenAlongX({12, -1}, {15, -1}, 7.0, k),
+                                testing::SeenAlongX({11, -1.3}, {11, -1}, 7.0, k)};
+    for (int64_t id = 0; id < 3; ++id) {
+      if (k == 0) {
+        state.planes.emplace(id, RltPlane(id, seen[id], 0.05, 1000));
+      } else {
+        state.Plane(id)->Add(seen[id]);
+      }
+    }
+  }
+  for (int64_t id = 0; id < 3; ++id) {
+    RltPlane* plane = state.Plane(id);
+    plane->latest_pose = from;
+    plane->latest_pose_known = true;
+    plane->groups = id == 2 ? std::vector<int64_t>{1} : std::vector<int64_t>{0, 1};
+  }
+  // Which edge index lies where along x (edges in the sensor frame, x along the hallway).
+  auto end_at = [&](int64_t id, double x) {
+    const Observation& obs = state.Plane(id)->Latest();
+    return std::abs(obs.edge[0].x() + from.x - x) < std::abs(obs.edge[1].x() + from.x - x) ? 0
+                                                                                             : 1;
+  };
+  const int a_near = end_at(0, 11.0), a_far = 1 - a_near, b_near = end_at(1, 12.0);
+  Placement a_global = PlacementOf(state.Plane(0)->Latest(), from, a_near);
+  ASSERT_EQ(a_global.known, Known::kPoint);
+  ASSERT_NEAR(a_global.point.x(), 11.0, 1e-6);
+  a_global.has_other = true;
+  a_global.other = Vector2d(9.0, -1.0);
+  a_global.other_by = 0;
+  const Placement b_global = PlacementOf(state.Plane(1)->Latest(), from, b_near);
+  ASSERT_NEAR(b_global.point.x(), 12.0, 1e-6);
+  const Placement c_seen = PlacementOf(state.Plane(2)->Latest(), from, -1);
+  // Group 1's frame is the world's: A's far end where its near end is.
+  Placement a_wrong = a_global;
+  a_wrong.has_other = false;
+  a_wrong.ref = a_far;
+  a_wrong.point = Vector2d(11.0, -1.0);
+
+  state.groups = {Built(0, 0, {{0, a_global}, {1, b_global}}, 0),
+                  Built(1, 2, {{0, a_wrong}, {1, b_global}, {2, c_seen}}, 2)};
+  state.global = {{0, a_global}, {1, b_global}};
+  state.placed_by = {{0, 0}, {1, 0}};
+  BuildGlobalMap(state, 1, MapperOptions{});
+  const geometry::Pose2& placed = state.groups[1].placement;
+  EXPECT_NEAR(placed.x, 0.0, 0.01);
+  EXPECT_NEAR(placed.y, 0.0, 0.01);
+  ASSERT_TRUE(state.global.count(2));
+  EXPECT_NEAR(state.global.at(2).point.x(), 11.0, 0.01);
+}
+
 TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {
   // From the start pose a wall across the view (x = 3) is seen whole, y from 2 to -2, across a
   // door (the lintel joins its pieces); the view cuts both edges but is not learnt yet, so they

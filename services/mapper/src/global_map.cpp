@@ -25,6 +25,11 @@ constexpr double kChainedOrientationPrior = 1.0;
 constexpr double kLineNoise = 0.01;       // m
 constexpr double kShortPieceBias = 0.03;  // m
 constexpr double kFullLine = 0.03;        // m
+// A link's static edge further than this along its wall from where the group's prior puts the
+// group is not taken while another link's edge agrees with the prior (Solve): the prior comes
+// from the pose when the group was made (centimetres off, a decimetre or two after a long
+// motion-model stretch); a wrongly paired edge is a wall's length or a door's width off.
+constexpr double kEdgeGate = 0.5;  // m
 
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
@@ -111,25 +116,6 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
   if (Eigen::SelfAdjointEigenSolver<Matrix2d>(a).eigenvalues()(0) >= 0.5) {
     lines_at(a.ldlt().solve(b), &a, &b);  // once more from where the lines put the group
   }
-  // Lines are exact whatever the edges do; static edges are added only where the lines leave
-  // a direction open (parallel walls), since an edge taken for static may not quite be.
-  Eigen::SelfAdjointEigenSolver<Matrix2d> eig(a);
-  const bool lines_suffice = eig.eigenvalues()(0) >= 0.5;
-  for (const Link& l : links) {
-    if (lines_suffice) break;
-    if (l.relative.known == Known::kAngle || l.global.known == Known::kAngle) continue;
-    for (int e = 0; e < 2; ++e) {
-      Vector2d rel_point, global_point;
-      if (!EdgePoint(*l.plane, l.global, e, &global_point) ||
-          !EdgePoint(*l.plane, l.relative, e, &rel_point)) {
-        continue;
-      }
-      const Vector2d t = DirectionOf(l.global.alpha);
-      a += t * t.transpose();
-      b += t * t.dot(global_point - rot * rel_point);
-      break;
-    }
-  }
   // The prior only decides a direction the links leave open; along the directions its members'
   // lines span, those lines as seen with the heading the links give, its ends' placement along
   // the rest.
@@ -143,6 +129,43 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
       lb += n * n.dot(line.seen_point - rot * line.member.point);
     }
     prior_t = SolveWithPrior(la, lb, prior_t, 0.0, 0.0);
+  }
+  // Lines are exact whatever the edges do; static edges are added only where the lines leave
+  // a direction open (parallel walls), since an edge taken for static may not quite be. One
+  // link's edge each, unless some agree with the prior along their wall and others lie more
+  // than kEdgeGate from it: those are dropped. Where one link's piece in the group's relative
+  // map is paired at the wrong end (a hallway wall 2 m long whose end next to a recess was
+  // taken for its far end), the two edges of a group's links put it 2 m apart and their mean
+  // moved the group and the pose 1 m along the hallway in one iteration (hallway_out_and_back
+  // at 1 cm, the turn back).
+  Eigen::SelfAdjointEigenSolver<Matrix2d> eig(a);
+  if (eig.eigenvalues()(0) < 0.5) {
+    struct EdgeTie {
+      Vector2d along;        // the wall's direction
+      Vector2d translation;  // the group's translation the edge puts it at
+    };
+    std::vector<EdgeTie> ties;
+    for (const Link& l : links) {
+      if (l.relative.known == Known::kAngle || l.global.known == Known::kAngle) continue;
+      for (int e = 0; e < 2; ++e) {
+        Vector2d rel_point, global_point;
+        if (!EdgePoint(*l.plane, l.global, e, &global_point) ||
+            !EdgePoint(*l.plane, l.relative, e, &rel_point)) {
+          continue;
+        }
+        ties.push_back({DirectionOf(l.global.alpha), global_point - rot * rel_point});
+        break;
+      }
+    }
+    auto agrees = [&](const EdgeTie& tie) {
+      return std::abs(tie.along.dot(tie.translation - prior_t)) <= kEdgeGate;
+    };
+    const bool any_agrees = std::any_of(ties.begin(), ties.end(), agrees);
+    for (const EdgeTie& tie : ties) {
+      if (any_agrees && !agrees(tie)) continue;
+      a += tie.along * tie.along.transpose();
+      b += tie.along * tie.along.dot(tie.translation);
+    }
   }
   const Vector2d t = SolveWithPrior(a, b, prior_t, prior_weight, 0.5);
   return {t.x(), t.y(), yaw};
