@@ -8,6 +8,7 @@
 #include "relplane/segmenter/hull.hpp"
 #include "relplane/segmenter/merge_pieces.hpp"
 #include "relplane/segmenter/spacing.hpp"
+#include "relplane/segmenter/trimmed_fit.hpp"
 #include "relplane/segmenter/wall_ends.hpp"
 
 namespace relplane::segmenter {
@@ -15,6 +16,9 @@ namespace {
 
 // The final fit of a piece uses its points within this many RMS of the first fit.
 constexpr float kTrimSigmas = 2.5f;
+// A vertical piece's trimmed fit is refitted to its points near it at most this many times more
+// (IterateTrimmedFit); most settle after one.
+constexpr int kMaxRefits = 10;
 
 struct Piece {
   int plane = 0;    // the EM plane it came from
@@ -279,11 +283,73 @@ void EstimateWallEnds(float ray_step, float share, float max_spacing, float rang
   }
 }
 
+// Each kept vertical piece's least-squares fit, refitted over its fitted points within the trim
+// of the last fit until they settle (IterateTrimmedFit): what the piece took from a crossing
+// face at a convex corner drops out. Walls only: the 2½D mapper uses nothing else, and a floor
+// holds most of a cloud's points.
+void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
+                         std::vector<Piece>* pieces) {
+  // The fitted points (fit_order, grouped by cell) of each vertical piece, in one buffer.
+  std::vector<int32_t>& start = w->piece_point_start;
+  start.assign(pieces->size() + 1, 0);
+  const size_t num_cells = w->cells.size();
+  auto vertical_piece = [&](size_t s) {
+    const int32_t piece = w->piece_of[s];
+    return piece >= 0 && (*pieces)[piece].kept && (*pieces)[piece].vertical &&
+                   (*pieces)[piece].trimmed_count >= 3
+               ? piece
+               : -1;
+  };
+  for (size_t s = 0; s < num_cells; ++s) {
+    const int32_t piece = vertical_piece(s);
+    if (piece >= 0) start[piece + 1] += w->fit_start[s + 1] - w->fit_start[s];
+  }
+  for (size_t k = 0; k < pieces->size(); ++k) start[k + 1] += start[k];
+  std::vector<Eigen::Vector3f>& points = w->piece_points;
+  points.resize(start.back());
+  std::vector<int32_t> next(start.begin(), start.end() - 1);
+  for (size_t s = 0; s < num_cells; ++s) {
+    const int32_t piece = vertical_piece(s);
+    if (piece < 0) continue;
+    const Eigen::Vector3f& origin = (*pieces)[piece].trimmed_centroid;
+    for (int32_t k = w->fit_start[s]; k < w->fit_start[s + 1]; ++k) {
+      const int32_t i = w->fit_order[k];
+      points[next[piece]++] = Eigen::Vector3f(cloud.x[i], cloud.y[i], cloud.z[i]) - origin;
+    }
+  }
+  for (size_t k = 0; k < pieces->size(); ++k) {
+    if (start[k + 1] == start[k]) continue;
+    Piece& p = (*pieces)[k];
+    PlaneFit fit;
+    fit.normal = p.out.normal.cast<double>();
+    fit.centroid = p.trimmed_centroid.cast<double>();
+    fit.rms = p.out.rms;
+    fit.count = p.trimmed_count;
+    fit = IterateTrimmedFit(points.data() + start[k], start[k + 1] - start[k],
+                            p.trimmed_centroid.cast<double>(), fit, kTrimSigmas,
+                            options.sigma_min, kMaxRefits);
+    if (fit.fits == 0) continue;
+    double d = -fit.normal.dot(fit.centroid);
+    Eigen::Vector3d normal = fit.normal;
+    if (d < 0.0) {  // the sensor sits at the origin: it must be on the positive side
+      normal = -normal;
+      d = -d;
+    }
+    p.out.normal = normal.cast<float>();
+    p.out.d = static_cast<float>(d);
+    p.out.rms = static_cast<float>(fit.rms);
+    p.scatter = p.stride * fit.scatter;  // as if every point had entered the fit
+    p.trimmed_centroid = fit.centroid.cast<float>();
+  }
+}
+
 // The kept pieces, described: trimmed refit and extent polygon. `index` receives each piece's
 // index in `out` (-1 when dropped).
-void Describe(bool ray_noise_fit, double max_variance, PieceWorkspace::Buffers* w,
+void Describe(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
               std::vector<Piece>* pieces, std::vector<PieceStats>* out,
               std::vector<int32_t>* index) {
+  const bool ray_noise_fit = options.ray_noise_fit;
+  const double max_variance = static_cast<double>(options.sigma_max) * options.sigma_max;
   const size_t num_cells = w->cells.size();
   std::vector<std::vector<Eigen::Vector2f>> hull_points(pieces->size());
   for (size_t s = 0; s < num_cells; ++s) {
@@ -309,16 +375,20 @@ void Describe(bool ray_noise_fit, double max_variance, PieceWorkspace::Buffers* 
     along += p.trimmed_normal.dot(p.rays * p.trimmed_normal);
   }
   const double ray_variance = along > 0.0 ? std::min(max_variance, residual / along) : 0.0;
-  index->assign(pieces->size(), -1);
-  for (size_t i = 0; i < pieces->size(); ++i) {
-    Piece& p = (*pieces)[i];
+  for (Piece& p : *pieces) {
     if (!p.kept) continue;
-    (*index)[i] = static_cast<int32_t>(out->size());
     if (ray_noise_fit) {
       TrimmedRefit(ray_variance, &p);
     } else {
       LeastSquaresRefit(&p);
     }
+  }
+  if (!ray_noise_fit) IterateVerticalFits(cloud, options, w, pieces);
+  index->assign(pieces->size(), -1);
+  for (size_t i = 0; i < pieces->size(); ++i) {
+    Piece& p = (*pieces)[i];
+    if (!p.kept) continue;
+    (*index)[i] = static_cast<int32_t>(out->size());
     auto lift = [&p](float pa, float pb) {
       return Eigen::Vector3f(p.out.centroid + pa * p.u + pb * p.v);
     };
@@ -398,8 +468,7 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
   }
   std::vector<PieceStats> described;
   std::vector<int32_t> index;
-  Describe(options.ray_noise_fit, static_cast<double>(options.sigma_max) * options.sigma_max, &w,
-           &pieces, &described, &index);
+  Describe(cloud, options, &w, &pieces, &described, &index);
 
   std::vector<int32_t> merged_into;
   std::vector<PieceStats> merged = MergeTouchingPieces(std::move(described), options, &merged_into);

@@ -72,6 +72,8 @@ struct PieceWorkspace::Buffers {
   std::vector<int32_t> parent, root_piece;  // union-find over cells
   std::vector<int32_t> reach;               // per cell, in cells; 0 for cells in no piece
   std::vector<uint8_t> outer;               // per cell: first or last of its piece on a line
+  std::vector<int32_t> piece_point_start;   // per piece and one more: where its points start in
+  std::vector<Eigen::Vector3f> piece_points;  // a vertical piece's fitted points, about its fit
 };
 
 // In-plane axes: for a vertical plane u is horizontal and v points up, so the extent rectangle
