@@ -38,6 +38,7 @@ struct Piece {
   Eigen::Matrix3d trimmed_sum_sq = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d rays = Eigen::Matrix3d::Zero();  // sum of d d^T over the fitted points' rays d
   Eigen::Vector3d trimmed_normal = Eigen::Vector3d::Zero();  // least squares
+  float trimmed_rms = 0.0f;
   float trim = 0.0f;  // distance from the first fit within which points are kept
   // How far the distance to the first fit varies over a cell of its grid: along the grid's
   // axes (half a cell each way), and per unit of distance from the EM plane.
@@ -84,24 +85,27 @@ Piece TrimmedFit(const Piece& p) {
   return trimmed;
 }
 
-// The least-squares fit of the piece's trimmed moments: its scatter, centroid and normal, and
-// the rays' share, sum d d^T, from the second moments about the sensor (at the origin),
-// sum p p^T, over the mean squared range: each point weighs its squared range over the mean,
-// close to one on a short piece, where the ray noise tilts the fit.
+// The rays' share of a fit's scatter, sum d d^T over the points' unit rays d, from their second
+// moments about the sensor (at the origin), sum p p^T = scatter + n c c^T, over the mean squared
+// range: each point weighs its squared range over the mean, close to one on a short piece, where
+// the ray noise tilts the fit. `scatter` about the centroid `c` of `n` points.
+Eigen::Matrix3d RaysShare(const Eigen::Matrix3d& scatter, const Eigen::Vector3d& c, double n) {
+  const Eigen::Matrix3d second = scatter + n * c * c.transpose();
+  const double range2 = second.trace();
+  return range2 > 0.0 ? Eigen::Matrix3d((n / range2) * second) : Eigen::Matrix3d::Zero();
+}
+
+// The least-squares fit of the piece's trimmed moments: its scatter, centroid, normal and RMS,
+// and the rays' share (RaysShare).
 void TrimmedMoments(Piece* p) {
   if (p->trimmed_count < 3) return;
   const Piece trimmed = TrimmedFit(*p);
-  const Eigen::Vector3d o = p->out.centroid.cast<double>();
-  const double n = p->trimmed_count;
-  Eigen::Matrix3d sum_sq = p->trimmed_sum_sq;
-  sum_sq.triangularView<Eigen::StrictlyUpper>() = sum_sq.transpose();
-  const Eigen::Matrix3d second = sum_sq + o * p->trimmed_sum.transpose() +
-                                 p->trimmed_sum * o.transpose() + n * o * o.transpose();
-  const double range2 = second.trace();
-  if (range2 > 0.0) p->rays = (p->stride * n / range2) * second;  // as the scatter: every point
-  p->scatter = trimmed.scatter;
+  p->scatter = trimmed.scatter;  // as if every point had entered the fit
+  p->rays = p->stride * RaysShare(trimmed.scatter / p->stride,
+                                  trimmed.out.centroid.cast<double>(), p->trimmed_count);
   p->trimmed_centroid = trimmed.out.centroid;
   p->trimmed_normal = trimmed.out.normal.cast<double>();
+  p->trimmed_rms = trimmed.out.rms;
 }
 
 // Refits the piece to its trimmed moments by least squares; the extent's axes (u, v) and
@@ -114,6 +118,8 @@ void LeastSquaresRefit(Piece* p) {
   p->out.rms = trimmed.out.rms;
   p->scatter = trimmed.scatter;
   p->trimmed_centroid = trimmed.out.centroid;
+  p->trimmed_normal = trimmed.out.normal.cast<double>();
+  p->trimmed_rms = trimmed.out.rms;
 }
 
 // Refits the piece to its trimmed moments (TrimmedMoments), the noise along the sensor's rays
@@ -321,14 +327,21 @@ void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorksp
     if (start[k + 1] == start[k]) continue;
     Piece& p = (*pieces)[k];
     PlaneFit fit;
-    fit.normal = p.out.normal.cast<double>();
+    fit.normal = p.trimmed_normal;
     fit.centroid = p.trimmed_centroid.cast<double>();
-    fit.rms = p.out.rms;
+    fit.rms = p.trimmed_rms;
     fit.count = p.trimmed_count;
     fit = IterateTrimmedFit(points.data() + start[k], start[k + 1] - start[k],
                             p.trimmed_centroid.cast<double>(), fit, kTrimSigmas,
                             options.sigma_min, kMaxRefits);
     if (fit.fits == 0) continue;
+    p.trimmed_count = fit.count;
+    p.trimmed_centroid = fit.centroid.cast<float>();
+    p.trimmed_normal = fit.normal;
+    p.trimmed_rms = static_cast<float>(fit.rms);
+    p.scatter = p.stride * fit.scatter;  // as if every point had entered the fit
+    p.rays = p.stride * RaysShare(fit.scatter, fit.centroid, fit.count);
+    if (options.ray_noise_fit) continue;  // TrimmedRefit fits the new moments
     double d = -fit.normal.dot(fit.centroid);
     Eigen::Vector3d normal = fit.normal;
     if (d < 0.0) {  // the sensor sits at the origin: it must be on the positive side
@@ -338,8 +351,6 @@ void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorksp
     p.out.normal = normal.cast<float>();
     p.out.d = static_cast<float>(d);
     p.out.rms = static_cast<float>(fit.rms);
-    p.scatter = p.stride * fit.scatter;  // as if every point had entered the fit
-    p.trimmed_centroid = fit.centroid.cast<float>();
   }
 }
 
@@ -364,26 +375,30 @@ void Describe(const Cloud& cloud, const Options& options, PieceWorkspace::Buffer
     if (p.vertical || !(w->mode[s] & kExtremes)) continue;
     for (const auto& e : {c.lo_a, c.hi_a, c.lo_b, c.hi_b}) hull_points[piece].push_back(e);
   }
-  // The sensor's noise along its rays, pooled over the frame's pieces (the large ones weigh
-  // most): a short piece's own residual also holds what is not noise (a corner's other face, a
-  // bend), and a piece seen at a grazing angle divides it by little.
-  double residual = 0.0, along = 0.0;
-  for (Piece& p : *pieces) {
-    if (!ray_noise_fit || !p.kept || p.trimmed_count < 3) continue;
-    TrimmedMoments(&p);
-    residual += p.trimmed_normal.dot(p.scatter * p.trimmed_normal);
-    along += p.trimmed_normal.dot(p.rays * p.trimmed_normal);
-  }
-  const double ray_variance = along > 0.0 ? std::min(max_variance, residual / along) : 0.0;
   for (Piece& p : *pieces) {
     if (!p.kept) continue;
     if (ray_noise_fit) {
-      TrimmedRefit(ray_variance, &p);
+      TrimmedMoments(&p);
     } else {
       LeastSquaresRefit(&p);
     }
   }
-  if (!ray_noise_fit) IterateVerticalFits(cloud, options, w, pieces);
+  IterateVerticalFits(cloud, options, w, pieces);
+  if (ray_noise_fit) {
+    // The sensor's noise along its rays, pooled over the frame's pieces (the large ones weigh
+    // most): a short piece's own residual also holds what is not noise (a corner's other face,
+    // a bend), and a piece seen at a grazing angle divides it by little.
+    double residual = 0.0, along = 0.0;
+    for (Piece& p : *pieces) {
+      if (!p.kept || p.trimmed_count < 3) continue;
+      residual += p.trimmed_normal.dot(p.scatter * p.trimmed_normal);
+      along += p.trimmed_normal.dot(p.rays * p.trimmed_normal);
+    }
+    const double ray_variance = along > 0.0 ? std::min(max_variance, residual / along) : 0.0;
+    for (Piece& p : *pieces) {
+      if (p.kept) TrimmedRefit(ray_variance, &p);
+    }
+  }
   index->assign(pieces->size(), -1);
   for (size_t i = 0; i < pieces->size(); ++i) {
     Piece& p = (*pieces)[i];
