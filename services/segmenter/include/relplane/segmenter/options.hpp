@@ -71,21 +71,20 @@ struct Options {
   int describe_points_max = 40000;
   // A vertical piece's ends where its samples put them on average, not at its extreme points
   // (wall_ends.hpp): the extreme lands up to a ray spacing short far off and past the end by
-  // the noise nearby. Off by default for now: with both options below the mapper meets its
-  // targets on more seeded runs at 1 cm noise, but office_other_sensor's seed 4 misses
-  // (README.md, "Wall ends from the segmenter").
-  bool wall_end_estimate = false;
+  // the noise nearby. On by default with the two options below: together they took the mapper's
+  // seeded runs at 1 cm noise from 43 to 58 of 72 (README.md, "Wall ends from the segmenter").
+  bool wall_end_estimate = true;
   float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
   // Take the sensor's noise along its rays out of each piece's fit (FitOutRayNoise in
   // merge_pieces.hpp): a plain fit of a short piece seen off to one side tilts towards its rays
-  // (1.7 degrees for a 0.15 m wall piece at 1 cm). Off by default: the pieces' fits improve, but
-  // the mapper's results on the recorded scenarios move both ways (README).
-  bool ray_noise_fit = false;
+  // (1.7 degrees for a 0.15 m wall piece at 1 cm): a door frame's jambs turned
+  // office_other_sensor's heading 0.2-0.5 degrees each time the sensor passed one.
+  bool ray_noise_fit = true;
 
   // Drop the mixture planes that form no piece and assign the frame again without them
   // (segmenter.cpp: a noise-free frame's rows of floor and ceiling samples and a wall column at
-  // one depth form a plane that cut wall pieces short). Off by default, as wall_end_estimate.
-  bool drop_pieceless_planes = false;
+  // one depth form a plane that cut wall pieces short).
+  bool drop_pieceless_planes = true;
 
   bool keep_labels = false;  // fill Result::labels (pictures, tests)
   uint32_t seed = 1;         // proposals' random choices; fixed per frame for determinism
