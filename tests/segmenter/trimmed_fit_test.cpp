@@ -64,9 +64,8 @@ TEST(IterateTrimmedFit, ACrossingFacesPointsDropOutOfAGrazingFacesFit) {
   const std::vector<Eigen::Vector3f> points = Face(0.003, 300, 1);
   const PlaneFit plain = LeastSquares(points);
   ASSERT_GT(ErrorDeg(plain), 3.0);
-  const PlaneFit fit =
-      IterateTrimmedFit(points.data(), points.size(), Eigen::Vector3d::Zero(), plain, 2.5f,
-                        0.003f, 10);
+  const PlaneFit fit = IterateTrimmedFit(points.data(), points.size(), Eigen::Vector3d::Zero(),
+                                         plain, 2.5f, 0.003f, 10);
   EXPECT_GE(fit.fits, 2);
   EXPECT_LT(ErrorDeg(fit), 0.3);
   EXPECT_LT(std::fabs(fit.centroid.y()), 0.005);
@@ -80,9 +79,8 @@ TEST(IterateTrimmedFit, OneTrimAtTheLeaningFitsRmsKeepsMostOfThem) {
   // What a piece's fit was before: one trim at 2.5 of the first fit's RMS.
   const std::vector<Eigen::Vector3f> points = Face(0.003, 300, 1);
   const PlaneFit plain = LeastSquares(points);
-  const PlaneFit once =
-      IterateTrimmedFit(points.data(), points.size(), Eigen::Vector3d::Zero(), plain, 2.5f,
-                        0.003f, 1);
+  const PlaneFit once = IterateTrimmedFit(points.data(), points.size(), Eigen::Vector3d::Zero(),
+                                          plain, 2.5f, 0.003f, 1);
   EXPECT_EQ(once.fits, 1);
   EXPECT_GT(ErrorDeg(once), 1.0);
 }
@@ -93,8 +91,8 @@ TEST(IterateTrimmedFit, ACleanPlaneKeepsItsPointsAndItsNoise) {
   for (uint32_t seed = 1; seed <= 5; ++seed) {
     const std::vector<Eigen::Vector3f> points = Face(0.01, 0, seed);
     const PlaneFit plain = LeastSquares(points);
-    const PlaneFit fit = IterateTrimmedFit(points.data(), points.size(),
-                                           Eigen::Vector3d::Zero(), plain, 2.5f, 0.003f, 10);
+    const PlaneFit fit = IterateTrimmedFit(points.data(), points.size(), Eigen::Vector3d::Zero(),
+                                           plain, 2.5f, 0.003f, 10);
     EXPECT_LE(fit.fits, 3);
     EXPECT_GT(fit.count, 0.98 * points.size());  // 98.8 % lie within 2.5 sigma
     EXPECT_NEAR(fit.rms, 0.0095, 0.0006);
@@ -107,9 +105,8 @@ TEST(IterateTrimmedFit, FewerThanThreePointsLeaveTheStart) {
   PlaneFit start;
   start.normal = Eigen::Vector3d(0, -1, 0);
   start.count = 7;
-  const PlaneFit fit =
-      IterateTrimmedFit(points.data(), points.size(), Eigen::Vector3d::Zero(), start, 2.5f,
-                        0.003f, 10);
+  const PlaneFit fit = IterateTrimmedFit(points.data(), points.size(), Eigen::Vector3d::Zero(),
+                                         start, 2.5f, 0.003f, 10);
   EXPECT_EQ(fit.fits, 0);
   EXPECT_EQ(fit.count, 7);
   EXPECT_EQ(fit.normal, start.normal);

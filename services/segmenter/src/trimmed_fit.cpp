@@ -21,8 +21,8 @@ double CutGaussianRmsShare(double k) {
 }  // namespace
 
 PlaneFit IterateTrimmedFit(const Eigen::Vector3f* points, size_t num_points,
-                             const Eigen::Vector3d& origin, const PlaneFit& start,
-                             float trim_sigmas, float sigma_min, int max_fits) {
+                           const Eigen::Vector3d& origin, const PlaneFit& start, float trim_sigmas,
+                           float sigma_min, int max_fits) {
   PlaneFit fit = start;
   fit.fits = 0;
   const double share = CutGaussianRmsShare(trim_sigmas);

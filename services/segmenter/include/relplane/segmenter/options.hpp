@@ -77,8 +77,8 @@ struct Options {
   float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
   // Take the sensor's noise along its rays out of each piece's fit (FitOutRayNoise in
   // merge_pieces.hpp): a plain fit of a short piece seen off to one side tilts towards its rays
-  // (1.7 degrees for a 0.15 m wall piece at 1 cm): a door frame's jambs turned
-  // office_other_sensor's heading 0.2-0.5 degrees each time the sensor passed one.
+  // (1.7 degrees for a 0.15 m wall piece at 1 cm): office_other_sensor's door-frame jambs, up
+  // to 2.6 degrees off, turned its heading by up to 0.6 degrees (README).
   bool ray_noise_fit = true;
 
   // Drop the mixture planes that form no piece and assign the frame again without them

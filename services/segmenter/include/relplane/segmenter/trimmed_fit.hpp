@@ -8,12 +8,12 @@
 namespace relplane::segmenter {
 
 struct PlaneFit {
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit; its sign follows `start`'s
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // unit; its sign follows `start`'s
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // of the points within the trim
   double rms = 0.0;                                    // their distance to the plane
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();   // about their centroid
   int count = 0;                                       // the points within the trim
-  int fits = 0;  // least-squares fits made: 0 when the start stood (fewer than 3 points)
+  int fits = 0;  // least-squares fits made: 0 when the start stood
 };
 
 // Points within `trim_sigmas` noise sigmas of the plane are fitted by least squares, and again
@@ -22,8 +22,8 @@ struct PlaneFit {
 // The sigma is the fit's RMS over the points kept, scaled up by what cutting a Gaussian at
 // +-trim_sigmas takes off it (2.5 sigmas: 4.5 %), so that on a clean plane the trim stays put;
 // it is at least `sigma_min`. `start` is the least-squares fit of `start.count` of the points,
-// those within a trim of an earlier fit. `points` (num_points of them) are relative to `origin`, all within a piece's
-// extent of it, so float keeps sub-millimetre precision.
+// those within a trim of an earlier fit. `points` (num_points of them) are relative to `origin`,
+// all within a piece's extent of it, so float keeps sub-millimetre precision.
 //
 // Why: at a convex corner (a pilaster's front seen at a grazing angle, its side square on) EM
 // gives the grazing face's mixture plane the side's points near the corner, and a plane within
@@ -31,7 +31,7 @@ struct PlaneFit {
 // and its RMS grows with them, so one trim at 2.5 of that RMS keeps most of them; each refit
 // leans less and trims tighter.
 PlaneFit IterateTrimmedFit(const Eigen::Vector3f* points, size_t num_points,
-                             const Eigen::Vector3d& origin, const PlaneFit& start,
-                             float trim_sigmas, float sigma_min, int max_fits);
+                           const Eigen::Vector3d& origin, const PlaneFit& start, float trim_sigmas,
+                           float sigma_min, int max_fits);
 
 }  // namespace relplane::segmenter
