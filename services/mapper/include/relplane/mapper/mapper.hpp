@@ -72,6 +72,7 @@ class Mapper {
   geometry::Pose2 pose_;
   geometry::Pose2 predicted_;  // pose_ moved on at the learnt velocity to this iteration
   bool motion_known_ = false;  // Predict's `known` for this iteration
+  int64_t last_walled_ = -1;   // the last iteration whose pose mapped walls placed
   // Iterations in a row whose position was held still: no motion known, the walls leaving the
   // heading open and no wall end moving it (Localise's `held`).
   int held_ = 0;
