@@ -146,5 +146,25 @@ TEST(MapCleanup, APartitionsTwoFacesStay) {
   ExpectBothStay({Mapped(1, {0, 2}, {4, 2}, 200), Mapped(2, {4.5, 2}, {0.5, 2}, 150)});
 }
 
+TEST(MapCleanup, TwoStretchesOfAWallSharingPartWhereTheViewCutBothAreOne) {
+  // hallway_out_and_back at 1 cm: a 12 m wall mapped on the way out from where the view's edge
+  // cut it (x = 5.89) and on the way back up to where the view cut it (x = 6.15), 2 cm apart:
+  // 0.26 m shared, a small part of either, but neither end there was ever a wall end.
+  auto stretches = [](bool cut) {
+    MappedPlane first = Mapped(1, {5.89, 2}, {13, 2}, 300);
+    MappedPlane back = Mapped(2, {0, 2.02}, {6.15, 2.02}, 150);
+    first.end_known[1] = back.end_known[0] = !cut;  // x = 5.89 and x = 6.15
+    first.both_ends_known = back.both_ends_known = !cut;
+    return std::vector<MappedPlane>{first, back};
+  };
+  std::vector<MappedPlane> planes = stretches(true);
+  MergeDuplicateWalls(&planes);
+  ASSERT_EQ(planes.size(), 1u);
+  EXPECT_NEAR(Wall(planes, 1).vertices[0].x(), 13.0, 1e-9);
+  EXPECT_NEAR(Wall(planes, 1).vertices[1].x(), 0.0, 1e-9);
+  // The same two with those ends seen static are two walls that meet there.
+  ExpectBothStay(stretches(false));
+}
+
 }  // namespace
 }  // namespace relplane::mapper

@@ -14,6 +14,9 @@ using Eigen::Vector2d;
 
 constexpr double kMergeAngle = 0.05;    // rad
 constexpr double kMergeDistance = 0.1;  // m
+// m: two walls on one line sharing more than this where neither end in the shared stretch was
+// ever seen static (both cut by the view) are one wall seen in two stretches.
+constexpr double kCutOverlap = 0.2;
 constexpr double kGridCell = 2.0;       // m
 
 Vector2d End(const MappedPlane& m, int e) { return m.vertices[e].head<2>(); }
@@ -148,7 +151,12 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
         const double lo = t.dot(End(keep, 0)), hi = t.dot(End(keep, 1));
         const double g0 = t.dot(End(gone, 0)), g1 = t.dot(End(gone, 1));
         const double shorter = std::min(hi - lo, g1 - g0);
-        if (std::min(hi, g1) - std::max(lo, g0) <= std::max(kMergeDistance, 0.5 * shorter)) {
+        const double shared = std::min(hi, g1) - std::max(lo, g0);
+        // Where they overlap in part, the two ends inside the shared stretch: one of each wall's.
+        const bool cut_ends = g0 < lo ? !keep.end_known[0] && !gone.end_known[1]
+                                      : !keep.end_known[1] && !gone.end_known[0];
+        if (shared <= std::max(kMergeDistance, 0.5 * shorter) &&
+            !(cut_ends && shared > kCutOverlap)) {
           continue;
         }
         Extend(&keep, g0, g1, gone.observations);
