@@ -14,10 +14,10 @@ using Eigen::Vector2d;
 
 constexpr double kMergeAngle = 0.05;    // rad
 constexpr double kMergeDistance = 0.1;  // m
-// m: two walls on one line sharing more than this where neither end in the shared stretch was
-// ever seen static (both cut by the view) are one wall seen in two stretches.
-constexpr double kCutOverlap = 0.2;
 constexpr double kGridCell = 2.0;       // m
+// m: two walls on one line sharing more than this where neither end in the shared stretch was
+// ever seen as a wall end (cut by the view or a nearer plane) are one wall seen in two stretches.
+constexpr double kCutOverlap = 0.2;
 
 Vector2d End(const MappedPlane& m, int e) { return m.vertices[e].head<2>(); }
 

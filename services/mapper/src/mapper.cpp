@@ -287,11 +287,10 @@ PoseEstimate Mapper::Localise(int64_t iteration, const std::vector<int64_t>& vis
       last_walled_ >= 0 && iteration - last_walled_ <= kMaxCoast) {
     // No mapped wall in view for a moment: the segmenter reported a wall's two pieces beside a
     // door as one over the lintel, which registered to neither of their rltplanes, and the
-    // door's jambs were not mapped yet (office_other_sensor at 1 cm). The motion model carries
-    // the pose through (§II.E) as it does along a direction the walls leave open: at the learnt
-    // velocity, or held still where no motion is known. Not where walls were in view and
-    // disagreed (Localise left them all out), nor for long.
-    estimate.pose = predicted_;
+    // door's jambs were not mapped yet (office_other_sensor at 1 cm). Localise kept the pose it
+    // started from, the motion model's (§II.E) as along a direction the walls leave open: the
+    // learnt velocity, or held still where no motion is known. That is a pose, not LOST; not
+    // where walls were in view and disagreed (Localise left them all out), nor for long.
     estimate.status = PoseStatus::kMotionModel;
   }
   const bool held = !motion_known_ && estimate.status == PoseStatus::kMotionModel &&
