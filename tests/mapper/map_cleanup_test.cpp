@@ -166,5 +166,26 @@ TEST(MapCleanup, TwoStretchesOfAWallSharingPartWhereTheViewCutBothAreOne) {
   ExpectBothStay(stretches(false));
 }
 
+TEST(MapCleanup, APieceAtACornerGoesOnceTheWallIsDrawnOnToTheCorner) {
+  // hallway_out_and_back at 1 cm, seed 23: a 6 cm piece of wall at the corner x = 4, reaching a
+  // centimetre past it, beside the wall's own end drawn 9.5 cm short of the corner. Before the
+  // wall is drawn on to the corner the piece lies beyond it (the crossing wall stands in the gap,
+  // so the piece is not joined to it either); after, inside it.
+  MappedPlane wall = Mapped(1, {0, 2}, {3.905, 2}, 300);
+  wall.end_known[0] = false;  // x = 3.905
+  wall.both_ends_known = false;
+  MappedPlane piece = Mapped(2, {3.95, 2}, {4.01, 2}, 80);
+  piece.end_known[0] = piece.end_known[1] = piece.both_ends_known = false;
+  const MappedPlane crossing = Mapped(3, {4, 5}, {4, 2}, 200);
+  std::vector<MappedPlane> merged_first = {wall, piece, crossing};
+  MergeDuplicateWalls(&merged_first);
+  EXPECT_TRUE(Kept(merged_first, 2));
+  std::vector<MappedPlane> planes = {wall, piece, crossing};
+  CleanUpWalls(&planes, 0.1);
+  EXPECT_FALSE(Kept(planes, 2));
+  ASSERT_TRUE(Kept(planes, 1));
+  EXPECT_NEAR(Wall(planes, 1).vertices[0].x(), 4.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace relplane::mapper

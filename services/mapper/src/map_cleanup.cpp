@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "box_grid.hpp"
+#include "relplane/mapper/map_corners.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -212,6 +213,12 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
     if (!drop[i]) kept.push_back(std::move(planes[i]));
   }
   planes = std::move(kept);
+}
+
+void CleanUpWalls(std::vector<MappedPlane>* planes, double corner_radius) {
+  MergeDuplicateWalls(planes);
+  SnapEndsToCorners(planes, corner_radius);
+  MergeDuplicateWalls(planes);
 }
 
 }  // namespace relplane::mapper

@@ -10,7 +10,6 @@
 #include "relplane/mapper/global_map.hpp"
 #include "relplane/mapper/grouping.hpp"
 #include "relplane/mapper/map_cleanup.hpp"
-#include "relplane/mapper/map_corners.hpp"
 #include "relplane/mapper/registration.hpp"
 #include "relplane/mapper/regrouping.hpp"
 #include "relplane/mapper/relative_map.hpp"
@@ -384,8 +383,7 @@ MapSnapshot Mapper::Map() const {
     m.end_known[1] = placed.known == Known::kPoint && (placed.ref == 1 || m.both_ends_known);
     snapshot.planes.push_back(std::move(m));
   }
-  MergeDuplicateWalls(&snapshot.planes);  // §II.D end
-  SnapEndsToCorners(&snapshot.planes, options_.corner_radius);  // §II.D end
+  CleanUpWalls(&snapshot.planes, options_.corner_radius);  // §II.D end
   for (const Group& g : state_.groups) {
     snapshot.groups.push_back({g.id, g.relative.basis, g.members});
   }

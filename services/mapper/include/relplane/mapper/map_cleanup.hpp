@@ -15,4 +15,9 @@ namespace relplane::mapper {
 // continue: that wall's facing end is not known and no other wall crosses the gap.
 void MergeDuplicateWalls(std::vector<MappedPlane>* planes);
 
+// The published map's walls as Mapper::Map draws them: MergeDuplicateWalls, each end drawn at the
+// corner it meets (SnapEndsToCorners, `corner_radius`), then MergeDuplicateWalls again, since a
+// wall drawn on to its corner may now hold a short piece it stopped short of before.
+void CleanUpWalls(std::vector<MappedPlane>* planes, double corner_radius);
+
 }  // namespace relplane::mapper
