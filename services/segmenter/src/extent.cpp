@@ -48,6 +48,15 @@ struct Piece {
   EndBuffer lo_end, hi_end;  // a vertical piece's points furthest out along u each way
 };
 
+// Sets `out`'s plane through `point` with `normal` (unit), turned towards the sensor at the
+// origin: the sensor must be on the positive side (d >= 0).
+void SetPlaneFacingSensor(const Eigen::Vector3d& normal, const Eigen::Vector3d& point,
+                          DetectedPlane* out) {
+  const double d = -normal.dot(point);
+  out->normal = (d < 0.0 ? -normal : normal).cast<float>();
+  out->d = static_cast<float>(std::abs(d));
+}
+
 // Least-squares refit of a piece from its moments about `origin`; normal towards the sensor.
 void Refit(const Eigen::Vector3f& origin, Piece* piece) {
   const double n = piece->count;
@@ -58,15 +67,8 @@ void Refit(const Eigen::Vector3f& origin, Piece* piece) {
   const Eigen::Matrix3d scatter = sum_sq - n * mean * mean.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(scatter);
-  Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
   const Eigen::Vector3d centroid = origin.cast<double>() + mean;
-  double d = -normal.dot(centroid);
-  if (d < 0.0) {  // the sensor sits at the origin: it must be on the positive side
-    normal = -normal;
-    d = -d;
-  }
-  piece->out.normal = normal.cast<float>();
-  piece->out.d = static_cast<float>(d);
+  SetPlaneFacingSensor(eig.eigenvectors().col(0).normalized(), centroid, &piece->out);
   piece->out.centroid = centroid.cast<float>();
   piece->out.num_points = piece->support;
   piece->out.rms = static_cast<float>(std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / n));
@@ -129,14 +131,7 @@ void TrimmedRefit(double max_variance, Piece* p) {
   if (p->trimmed_count < 3) return;
   const RayNoiseFit fit =
       FitOutRayNoise(p->scatter, p->rays, p->stride * p->trimmed_count, max_variance);
-  Eigen::Vector3d normal = fit.normal;
-  double d = -normal.dot(p->trimmed_centroid.cast<double>());
-  if (d < 0.0) {  // the sensor sits at the origin: it must be on the positive side
-    normal = -normal;
-    d = -d;
-  }
-  p->out.normal = normal.cast<float>();
-  p->out.d = static_cast<float>(d);
+  SetPlaneFacingSensor(fit.normal, p->trimmed_centroid.cast<double>(), &p->out);
   p->out.rms = static_cast<float>(fit.rms);
 }
 
@@ -342,14 +337,7 @@ void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorksp
     p.scatter = p.stride * fit.scatter;  // as if every point had entered the fit
     p.rays = p.stride * RaysShare(fit.scatter, fit.centroid, fit.count);
     if (options.ray_noise_fit) continue;  // TrimmedRefit fits the new moments
-    double d = -fit.normal.dot(fit.centroid);
-    Eigen::Vector3d normal = fit.normal;
-    if (d < 0.0) {  // the sensor sits at the origin: it must be on the positive side
-      normal = -normal;
-      d = -d;
-    }
-    p.out.normal = normal.cast<float>();
-    p.out.d = static_cast<float>(d);
+    SetPlaneFacingSensor(fit.normal, fit.centroid, &p.out);
     p.out.rms = static_cast<float>(fit.rms);
   }
 }
