@@ -286,9 +286,10 @@ TEST(RltPlane, BestOrientationWeightIsThatOfTheStoredObservations) {
 
 TEST(RltPlane, FullLengthKeptWhileItsRangeGrowsIsTheOneWorkedOutAfresh) {
   // Length() is not worked out again while the range seen whole only grows at its end and the
-  // length came from that range's first sightings alone. Two planes with the same sightings:
-  // one asked at every iteration (kept values), one only at the end (worked out once). With
-  // sightings dropped (400 kept of 700) the kept value must follow, as the fresh one does.
+  // length came from that range's first sightings alone. Planes with the same sightings, each
+  // marked whole as it comes: one asked at every iteration (kept values), others only at the
+  // end (worked out once). With sightings dropped (400 kept of 700; their lengths stay in the
+  // thinned sample) the kept value must follow, as the fresh one does.
   const auto sighting = [](int k) {
     const double noise = 0.004 * std::sin(0.7 * k) + 0.003 * std::cos(1.3 * k);
     return See({0.01 * k, 0, 0}, kEnd0, kEnd1, 0, 2 + noise, k);
@@ -302,8 +303,10 @@ TEST(RltPlane, FullLengthKeptWhileItsRangeGrowsIsTheOneWorkedOutAfresh) {
     const double kept = asked.Length();
     if (k % 50 == 0 || k == 699) {
       RltPlane once(0, sighting(0), 0.05, 400);
-      for (int q = 1; q <= k; ++q) once.Add(sighting(q));
-      once.MarkFull(0, k);
+      for (int q = 1; q <= k; ++q) {
+        once.Add(sighting(q));
+        once.MarkFull(0, q);
+      }
       ASSERT_EQ(kept, once.Length()) << "iteration " << k;
     }
   }

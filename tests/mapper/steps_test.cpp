@@ -63,6 +63,29 @@ TEST(RltPlane, FullLengthOfAPieceSeenTooLongInARunOfSightingsIsWhatMostShow) {
   EXPECT_NEAR(plane.Length(), 0.4, 0.025);
 }
 
+// Bounded memory drops a plane's old sightings, but what they showed still counts: a pilaster
+// face seen whole at 0.3 m on a first lap, then on a second lap as 0.2 m in 60 sightings (the
+// segmenter gave its corner to the wall beside it) and 0.3 m in 40, is 0.3 m long. From the
+// second lap alone it was 0.2 m, and every group placing its far end from its near one had that
+// end 0.1 m off.
+TEST(RltPlane, FullLengthStillCountsTheWholeSightingsAlreadyDropped) {
+  const Vector2d near_end(6, 0.95);
+  auto seen = [&](double length, int64_t k) {
+    return *MakeObservation(Wall(near_end, near_end + length * Vector2d(0, 1)), k, 0.3);
+  };
+  RltPlane plane(0, seen(0.3, 0), 0.05, 100);  // keeps 100 sightings
+  for (int k = 1; k < 100; ++k) plane.Add(seen(0.3, k));
+  plane.MarkFull(0, 99);
+  for (int k = 100; k < 200; ++k) plane.Add(seen(k < 160 ? 0.2 : 0.3, k));
+  ASSERT_GE(plane.Observations().front().iteration, 100);  // the first lap's are gone
+  plane.MarkFull(100, 199);
+  EXPECT_NEAR(plane.Length(), 0.3, 1e-6);
+  // The second lap's sightings, dropped in turn, count for as many as the first lap's.
+  for (int k = 200; k < 400; ++k) plane.Add(seen(0.2, k));
+  plane.MarkFull(200, 399);
+  EXPECT_NEAR(plane.Length(), 0.2, 1e-6);  // 260 sightings at 0.2 m against 140 at 0.3 m
+}
+
 // A wall's visible length changes smoothly as the sensor moves; one sighting longer than both
 // its neighbours (a strip of floor along a door jamb's foot taken with it) is not its size, seen
 // whole or not (§II.C maximum size): the jamb's length put the wall beside it 0.5 m off.

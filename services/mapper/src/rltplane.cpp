@@ -11,6 +11,7 @@ namespace relplane::mapper {
 namespace {
 
 constexpr size_t kFullLengthCap = 300;    // sightings the full length is the median of
+constexpr size_t kRetiredCap = 64;        // dropped whole sightings' lengths kept (thinned)
 constexpr size_t kSmoothing = 5;          // lengths averaged for the growth phase
 constexpr double kNoiseHysteresis = 3.0;  // length noise sigmas
 
@@ -104,6 +105,7 @@ void RltPlane::Add(Observation obs) {
 void RltPlane::DropBefore(int64_t iteration) {
   if (observations_.empty() || observations_.front().iteration >= iteration) return;
   while (observations_.size() > 1 && observations_.front().iteration < iteration) {
+    if (InFullRange(observations_.front().iteration)) Retire(observations_.front().Length());
     observations_.pop_front();
     terms_.pop_front();
   }
@@ -128,6 +130,25 @@ void RltPlane::DropBefore(int64_t iteration) {
   }
   if (old.first != INT64_MAX) kept.insert(kept.begin(), old);
   full_ranges_ = std::move(kept);
+}
+
+bool RltPlane::InFullRange(int64_t iteration) const {
+  return std::any_of(full_ranges_.begin(), full_ranges_.end(), [iteration](const auto& r) {
+    return iteration >= r.first && iteration <= r.second;
+  });
+}
+
+void RltPlane::Retire(double length) {
+  // Every retired_stride_-th length is kept; when the sample is full, every other one goes and
+  // the stride doubles, so the sample stays spread evenly over all the dropped sightings.
+  if (retired_count_++ % retired_stride_ != 0) return;
+  retired_lengths_.push_back(static_cast<float>(length));
+  if (retired_lengths_.size() < kRetiredCap) return;
+  for (size_t i = 0; 2 * i < retired_lengths_.size(); ++i) {
+    retired_lengths_[i] = retired_lengths_[2 * i];
+  }
+  retired_lengths_.resize((retired_lengths_.size() + 1) / 2);
+  retired_stride_ *= 2;
 }
 
 size_t RltPlane::LowerBound(int64_t iteration) const {
@@ -182,11 +203,27 @@ double RltPlane::Length() const {
         capped_first_ = r->first;
       }
     }
-    // With the sightings dropped (bounded memory) the length they gave stands.
-    if (!lengths.empty()) {
-      const auto mid = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
-      std::nth_element(lengths.begin(), mid, lengths.end());
-      full_length_ = *mid;
+    // The sightings already dropped (bounded memory) count through their thinned sample, each
+    // for the sightings it stands for: without them a plane seen whole again on a second lap
+    // took its length from that lap alone, and a run of sightings short by a tenth of a pilaster
+    // face (the segmenter gave its corner to the wall beside it for 60 iterations) made the face
+    // 9 cm shorter, moved its far end as much in every group that placed it from the near one,
+    // and the pose graph slid a whole leg of the loop 6 cm across its hallway.
+    std::vector<std::pair<double, double>> weighted;  // length, sightings it stands for
+    weighted.reserve(lengths.size() + retired_lengths_.size());
+    for (double l : lengths) weighted.emplace_back(l, 1.0);
+    const double stride = static_cast<double>(retired_stride_);
+    for (float l : retired_lengths_) weighted.emplace_back(l, stride);
+    if (!weighted.empty()) {
+      std::sort(weighted.begin(), weighted.end());
+      double total = 0.0;
+      for (const auto& w : weighted) total += w.second;
+      double below = 0.0;
+      for (const auto& [length, weight] : weighted) {
+        below += weight;
+        full_length_ = length;
+        if (below > 0.5 * total) break;  // the upper median, as without a sample
+      }
       full_valid_ = true;
     }
     full_dirty_ = false;

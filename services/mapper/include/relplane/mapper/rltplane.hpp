@@ -88,6 +88,11 @@ class RltPlane {
   }
 
  private:
+  // Whether `iteration` lies in a range where the wall was seen whole.
+  bool InFullRange(int64_t iteration) const;
+  // Keeps a dropped whole sighting's length in the thinned sample.
+  void Retire(double length);
+
   int64_t id_;
   double hysteresis_;
   size_t max_observations_;
@@ -107,6 +112,12 @@ class RltPlane {
   mutable bool capped_ = false;
   mutable int64_t capped_first_ = 0;
   mutable int64_t capped_from_ = 0;
+  // Lengths of whole sightings already dropped (bounded memory): a sample of at most 64, every
+  // retired_stride_-th one of the retired_count_ so far (Retire), so the full length still
+  // counts them.
+  std::vector<float> retired_lengths_;
+  int64_t retired_stride_ = 1;
+  int64_t retired_count_ = 0;
   double z_min_;
   double z_max_;
   // Growth tracking: phase starts (iteration, first of the phase), current trend and extreme.
