@@ -373,6 +373,7 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
   size_t refine_from = refined_from;
   int evidence = 0;
   for (const Group& group : state.groups) evidence += group.loop_evidence;
+  evidence += state.pose_ties_made;
   if (options.graph.enabled && evidence > state.loop_evidence) {
     state.loop_evidence = evidence;
     const PoseGraphResult solved = OptimiseGroupPlacements(state, options.graph);

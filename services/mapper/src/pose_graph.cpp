@@ -77,6 +77,66 @@ std::vector<Tie> CollectTies(const MapperState& state) {
   return ties;
 }
 
+// What hard chaining (§II.D) measured of a group from the one before where their ties leave it
+// open. A group that shares no wall end with the one before (turning in place at a corner, the
+// walls before the turn gone from view before the next ones came in) was chained on from the
+// pose, which the motion model held still (§II.E); the ties know nothing of that direction, and
+// only the weak prior held it: a loop's error went all into those directions at the corners,
+// and each leg kept the drift it had made along it (20 m x 12 m loop at 1 cm: after the loop
+// closed, the far end wall of the first leg stayed 4 cm short). Where the ties observe a
+// direction the chain only repeats them, and is left out. Not for a group a loop placed from
+// older groups (it has loop evidence): its chain does not run from the group before.
+struct ChainPrior {
+  std::vector<Vector2d> open;  // world directions of the position the ties leave open
+  bool yaw = false;            // no tie turns the two groups
+};
+
+std::vector<ChainPrior> ChainPriors(const MapperState& state, const std::vector<Tie>& ties,
+                                    const std::vector<geometry::Pose2>& x) {
+  const int n = static_cast<int>(state.groups.size());
+  std::vector<ChainPrior> chain(n);
+  std::vector<Eigen::Matrix2d> information(n, Eigen::Matrix2d::Zero());
+  std::vector<bool> turned(n, false);
+  for (const Tie& t : ties) {
+    if (t.j != t.i + 1) continue;
+    turned[t.j] = true;
+    if (t.a->known == Known::kAngle || t.b->known == Known::kAngle) continue;
+    const Vector2d normal = NormalOf(x[t.i].yaw + t.a->alpha);
+    information[t.j] += normal * normal.transpose();
+  }
+  for (int k = 1; k < n; ++k) {
+    if (state.groups[k].loop_evidence > 0) continue;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(information[k]);
+    for (int e = 0; e < 2; ++e) {
+      if (eig.eigenvalues()(e) < kOpenInformation) {
+        chain[k].open.push_back(eig.eigenvectors().col(e));
+      }
+    }
+    chain[k].yaw = !turned[k];
+  }
+  return chain;
+}
+
+// The pose ties whose groups still have the frames they were made in (PoseTie).
+std::vector<const PoseTie*> CurrentPoseTies(const MapperState& state) {
+  std::vector<const PoseTie*> current;
+  const auto n = static_cast<int64_t>(state.groups.size());
+  auto same_frame = [&state](int64_t g, int64_t basis, int ref) {
+    const RelativeMap& map = state.groups[static_cast<size_t>(g)].relative;
+    if (map.basis != basis) return false;
+    auto it = map.members.find(basis);
+    return it == map.members.end() ? ref < 0 : it->second.ref == ref;
+  };
+  for (const PoseTie& t : state.pose_ties) {
+    if (t.a_group < 0 || t.a_group >= n || t.b_group < 0 || t.b_group >= n) continue;
+    if (!same_frame(t.a_group, t.a_basis, t.a_ref) || !same_frame(t.b_group, t.b_basis, t.b_ref)) {
+      continue;
+    }
+    current.push_back(&t);
+  }
+  return current;
+}
+
 // d/dyaw of R(yaw) p.
 Vector2d RotDerivative(double yaw, const Vector2d& p) {
   return Eigen::Rotation2Dd(yaw) * Vector2d(-p.y(), p.x());
@@ -110,7 +170,8 @@ struct Normal {
 };
 
 // The normalised cost and its normal equations at the current placements.
-Normal Linearise(const std::vector<Tie>& ties, const std::vector<geometry::Pose2>& x,
+Normal Linearise(const std::vector<Tie>& ties, const std::vector<const PoseTie*>& pose_ties,
+                 const std::vector<ChainPrior>& chain, const std::vector<geometry::Pose2>& x,
                  const std::vector<geometry::Pose2>& x0, const PoseGraphOptions& options) {
   const int n = static_cast<int>(x.size());
   Normal eq;
@@ -153,6 +214,49 @@ Normal Linearise(const std::vector<Tie>& ties, const std::vector<geometry::Pose2
     eq.Add(dir.dot(edge_diff), wp, t.i,
            {dir.x(), dir.y(), -nrm.dot(edge_diff) + dir.dot(RotDerivative(pi.yaw, qa))}, t.j,
            {-dir.x(), -dir.y(), -dir.dot(RotDerivative(pj.yaw, qb))});
+  }
+  // Loops closed by backtracking: one sensor pose as each of two groups has it (PoseTie).
+  const double wpose = 1.0 / (options.pose_tie_sigma * options.pose_tie_sigma);
+  const double wyaw = 1.0 / (options.pose_tie_angle_sigma * options.pose_tie_angle_sigma);
+  for (const PoseTie* t : pose_ties) {
+    const int i = static_cast<int>(t->a_group), j = static_cast<int>(t->b_group);
+    const geometry::Pose2& pi = x[i];
+    const geometry::Pose2& pj = x[j];
+    const Vector2d diff = pi * t->a.Translation() - pj * t->b.Translation();
+    const Vector2d di = RotDerivative(pi.yaw, t->a.Translation());
+    const Vector2d dj = RotDerivative(pj.yaw, t->b.Translation());
+    if (t->has_open) {
+      // Across the open direction only (it turns with group i).
+      const Vector2d w = NormalOf(pi.yaw + t->open_alpha);
+      const Vector2d dw = RotDerivative(0.0, w);  // d w / d yaw_i
+      eq.Add(w.dot(diff), wpose, i, {w.x(), w.y(), w.dot(di) + dw.dot(diff)}, j,
+             {-w.x(), -w.y(), -w.dot(dj)});
+    } else {
+      eq.Add(diff.x(), wpose, i, {1, 0, di.x()}, j, {-1, 0, -dj.x()});
+      eq.Add(diff.y(), wpose, i, {0, 1, di.y()}, j, {0, -1, -dj.y()});
+    }
+    eq.Add(geometry::WrapAngle(pi.yaw + t->a.yaw - pj.yaw - t->b.yaw), wyaw, i, {0, 0, 1}, j,
+           {0, 0, -1});
+  }
+  // Each group where the chain put it from the one before (§II.D hard chaining), along what the
+  // ties between the two leave open (ChainPrior).
+  const double wchain = 1.0 / (options.pose_tie_sigma * options.pose_tie_sigma);
+  const double wchain_yaw = 1.0 / (options.pose_tie_angle_sigma * options.pose_tie_angle_sigma);
+  for (int k = 1; k < n; ++k) {
+    const ChainPrior& link = chain[k];
+    if (!link.yaw && link.open.empty()) continue;
+    const geometry::Pose2 rel = x0[k - 1].Inverse() * x0[k];
+    const geometry::Pose2& pi = x[k - 1];
+    const geometry::Pose2& pj = x[k];
+    const Vector2d diff = pi * rel.Translation() - pj.Translation();
+    const Vector2d di = RotDerivative(pi.yaw, rel.Translation());
+    for (const Vector2d& u : link.open) {
+      eq.Add(u.dot(diff), wchain, k - 1, {u.x(), u.y(), u.dot(di)}, k, {-u.x(), -u.y(), 0});
+    }
+    if (link.yaw) {
+      eq.Add(geometry::WrapAngle(pi.yaw + rel.yaw - pj.yaw), wchain_yaw, k - 1, {0, 0, 1}, k,
+             {0, 0, -1});
+    }
   }
   // Each group's chained placement as a weak prior (the gauge where ties leave a direction
   // open); group 0 is anchored.
@@ -203,7 +307,8 @@ PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptio
   const int n = static_cast<int>(state.groups.size());
   if (n < 2) return result;
   const std::vector<Tie> ties = CollectTies(state);
-  result.ties = static_cast<int>(ties.size());
+  const std::vector<const PoseTie*> pose_ties = CurrentPoseTies(state);
+  result.ties = static_cast<int>(ties.size() + pose_ties.size());
   // The priors are centred on each group's chained placement (§II.D), which a solve leaves as
   // it was, not on where the last solve left the group: that placement already holds the ties,
   // so a prior centred on it counted them again at every solve, and each solve moved a direction
@@ -222,7 +327,8 @@ PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptio
   }
   Eigen::SparseMatrix<double> h(3 * n, 3 * n);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-  Normal eq = Linearise(ties, x, x0, options);
+  const std::vector<ChainPrior> chain = ChainPriors(state, ties, x);
+  Normal eq = Linearise(ties, pose_ties, chain, x, x0, options);
   result.cost_before = eq.cost;
   // Levenberg-Marquardt: a step that does not lower the cost is refused and the next one damped
   // harder. Plain Gauss-Newton overshot: through the robust kernel and the groups the ties
@@ -243,7 +349,7 @@ PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptio
       next[k].yaw = geometry::WrapAngle(next[k].yaw + step(3 * k + 2));
     }
     result.iterations = iter + 1;
-    Normal next_eq = Linearise(ties, next, x0, options);
+    Normal next_eq = Linearise(ties, pose_ties, chain, next, x0, options);
     if (next_eq.cost >= eq.cost) {
       damping *= 10.0;
       continue;

@@ -60,6 +60,12 @@ class Mapper {
 
  private:
   std::vector<int64_t> Register(int64_t iteration, std::vector<Observation>& observations);
+  // A loop closing (§II.A end): walls of group `oldest` matched again while `chain`, the walls in
+  // view registered as usual, put the sensor at `pose`. Noted for MakePoseTie when all of
+  // `chain` was placed by groups well after `oldest`.
+  void NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose2& pose, int64_t oldest);
+  // The PoseTie of a loop noted closing at this iteration, from the pose `estimate` found.
+  void MakePoseTie(int64_t iteration, const PoseEstimate& estimate);
   void Compare(int64_t iteration, const std::vector<int64_t>& visible);
   void BuildMaps();
   PoseEstimate Localise(int64_t iteration, const std::vector<int64_t>& visible);
@@ -81,6 +87,14 @@ class Mapper {
   double judged_range_limit_ = std::numeric_limits<double>::infinity();
   int64_t last_iteration_ = -1;
   int64_t previous_iteration_ = -1;  // the iteration before last_iteration_
+  // A loop closing at this iteration (Register): the pose from the chain's walls alone and the
+  // groups of the two sides, made a PoseTie once the iteration's pose is known.
+  bool closing_ = false;
+  geometry::Pose2 closing_pose_;
+  int64_t closing_from_ = -1;  // the chain's newest group among the walls in view
+  int64_t closing_to_ = -1;    // the oldest group among the re-seen walls
+  bool closing_open_ = false;  // the chain's walls left the direction closing_open_alpha_ open
+  double closing_open_alpha_ = 0.0;
 };
 
 }  // namespace relplane::mapper

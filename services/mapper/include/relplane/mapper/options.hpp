@@ -68,6 +68,10 @@ struct PoseGraphOptions {
   // against a line (localisation.prior_weight 1e-4: position_sigma / sqrt(1e-4)). At 100 m, a
   // gauge only, a direction the ties hardly observe slid by metres for a negligible gain.
   double prior_sigma = 1.0;
+  // m and rad: agreement of the two poses of a loop closed by backtracking (PoseTie), the
+  // motion model's over the few iterations the sensor sees neither side's wall ends.
+  double pose_tie_sigma = 0.02;
+  double pose_tie_angle_sigma = 0.01;
   int max_iterations = 10;
 };
 
