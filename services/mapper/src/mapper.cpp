@@ -181,10 +181,6 @@ void Mapper::MakePoseTie(int64_t iteration, const PoseEstimate& estimate) {
   if (estimate.status != PoseStatus::kTracking) return;
   const Group& from = state_.groups.at(static_cast<size_t>(closing_from_));
   const Group& to = state_.groups.at(static_cast<size_t>(closing_to_));
-  auto ref = [](const Group& g) {
-    auto it = g.relative.members.find(g.relative.basis);
-    return it == g.relative.members.end() ? -1 : it->second.ref;
-  };
   // A loop that closes where the chain already has the sensor has nothing to spread: no tie, and
   // the graph is not solved for it (a noise-free office closed its loop 0.2 mm off, and solving
   // the graph moved a wall 1.1 cm). Half a centimetre or a tenth of a degree is something.
@@ -204,8 +200,8 @@ void Mapper::MakePoseTie(int64_t iteration, const PoseEstimate& estimate) {
   tie.b_group = closing_to_;
   tie.a_basis = from.relative.basis;
   tie.b_basis = to.relative.basis;
-  tie.a_ref = ref(from);
-  tie.b_ref = ref(to);
+  tie.a_ref = from.relative.BasisRef();
+  tie.b_ref = to.relative.BasisRef();
   tie.has_open = closing_open_;
   tie.open_alpha = geometry::WrapAngle(closing_open_alpha_ - from.placement.yaw);
   tie.a = from.placement.Inverse() * closing_pose_;

@@ -123,9 +123,7 @@ std::vector<const PoseTie*> CurrentPoseTies(const MapperState& state) {
   const auto n = static_cast<int64_t>(state.groups.size());
   auto same_frame = [&state](int64_t g, int64_t basis, int ref) {
     const RelativeMap& map = state.groups[static_cast<size_t>(g)].relative;
-    if (map.basis != basis) return false;
-    auto it = map.members.find(basis);
-    return it == map.members.end() ? ref < 0 : it->second.ref == ref;
+    return map.basis == basis && map.BasisRef() == ref;
   };
   for (const PoseTie& t : state.pose_ties) {
     if (t.a_group < 0 || t.a_group >= n || t.b_group < 0 || t.b_group >= n) continue;

@@ -40,6 +40,12 @@ struct Placement {
 struct RelativeMap {
   int64_t basis = -1;
   std::map<int64_t, Placement> members;
+
+  // The basis's reference edge (the frame's origin), -1 when it has none or is not placed.
+  int BasisRef() const {
+    auto it = members.find(basis);
+    return it == members.end() ? -1 : it->second.ref;
+  }
 };
 
 // §II.F the comparison order of a group: the basis, the edge its frame starts at, and which
