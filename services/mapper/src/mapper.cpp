@@ -116,7 +116,7 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   Compare(iteration, visible);                                             // §II.C
   BuildMaps();                                                             // §II.D
   const PoseEstimate estimate = Localise(iteration, visible);              // §II.D, §II.E
-  MakePoseTie(iteration, estimate);
+  MakePoseTie(estimate);
   pose_ = estimate.pose;
   state_.poses[iteration] = pose_;
   if (estimate.status == PoseStatus::kTracking) state_.fixed_poses.insert(iteration);
@@ -175,7 +175,7 @@ void Mapper::NoteClosing(const std::vector<Sighting>& chain, const geometry::Pos
   closing_to_ = oldest;
 }
 
-void Mapper::MakePoseTie(int64_t iteration, const PoseEstimate& estimate) {
+void Mapper::MakePoseTie(const PoseEstimate& estimate) {
   if (!closing_) return;
   closing_ = false;
   if (estimate.status != PoseStatus::kTracking) return;
@@ -195,7 +195,6 @@ void Mapper::MakePoseTie(int64_t iteration, const PoseEstimate& estimate) {
     return;
   }
   PoseTie tie;
-  tie.iteration = iteration;
   tie.a_group = closing_from_;
   tie.b_group = closing_to_;
   tie.a_basis = from.relative.basis;

@@ -237,9 +237,7 @@ Normal Linearise(const std::vector<Tie>& ties, const std::vector<const PoseTie*>
            {0, 0, -1});
   }
   // Each group where the chain put it from the one before (§II.D hard chaining), along what the
-  // ties between the two leave open (ChainPrior).
-  const double wchain = 1.0 / (options.pose_tie_sigma * options.pose_tie_sigma);
-  const double wchain_yaw = 1.0 / (options.pose_tie_angle_sigma * options.pose_tie_angle_sigma);
+  // ties between the two leave open (ChainPrior): the motion model's pose, weighed as a PoseTie's.
   for (int k = 1; k < n; ++k) {
     const ChainPrior& link = chain[k];
     if (!link.yaw && link.open.empty()) continue;
@@ -249,11 +247,10 @@ Normal Linearise(const std::vector<Tie>& ties, const std::vector<const PoseTie*>
     const Vector2d diff = pi * rel.Translation() - pj.Translation();
     const Vector2d di = RotDerivative(pi.yaw, rel.Translation());
     for (const Vector2d& u : link.open) {
-      eq.Add(u.dot(diff), wchain, k - 1, {u.x(), u.y(), u.dot(di)}, k, {-u.x(), -u.y(), 0});
+      eq.Add(u.dot(diff), wpose, k - 1, {u.x(), u.y(), u.dot(di)}, k, {-u.x(), -u.y(), 0});
     }
     if (link.yaw) {
-      eq.Add(geometry::WrapAngle(pi.yaw + rel.yaw - pj.yaw), wchain_yaw, k - 1, {0, 0, 1}, k,
-             {0, 0, -1});
+      eq.Add(geometry::WrapAngle(pi.yaw + rel.yaw - pj.yaw), wyaw, k - 1, {0, 0, 1}, k, {0, 0, -1});
     }
   }
   // Each group's chained placement as a weak prior (the gauge where ties leave a direction

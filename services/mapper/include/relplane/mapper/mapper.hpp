@@ -65,7 +65,7 @@ class Mapper {
   // `chain` was placed by groups well after `oldest`.
   void NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose2& pose, int64_t oldest);
   // The PoseTie of a loop noted closing at this iteration, from the pose `estimate` found.
-  void MakePoseTie(int64_t iteration, const PoseEstimate& estimate);
+  void MakePoseTie(const PoseEstimate& estimate);
   void Compare(int64_t iteration, const std::vector<int64_t>& visible);
   void BuildMaps();
   PoseEstimate Localise(int64_t iteration, const std::vector<int64_t>& visible);

@@ -69,7 +69,8 @@ struct PoseGraphOptions {
   // gauge only, a direction the ties hardly observe slid by metres for a negligible gain.
   double prior_sigma = 1.0;
   // m and rad: agreement of the two poses of a loop closed by backtracking (PoseTie), the
-  // motion model's over the few iterations the sensor sees neither side's wall ends.
+  // motion model's over the few iterations the sensor sees neither side's wall ends; the same
+  // for a group held where the chain put it from the one before (pose_graph.cpp ChainPriors).
   double pose_tie_sigma = 0.02;
   double pose_tie_angle_sigma = 0.01;
   int max_iterations = 10;

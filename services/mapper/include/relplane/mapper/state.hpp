@@ -109,7 +109,6 @@ struct Group {
 // Each group's frame is its basis's (with the basis's reference edge): a tie whose group was
 // based anew since is left out.
 struct PoseTie {
-  int64_t iteration = 0;
   int64_t a_group = -1;
   int64_t b_group = -1;
   int64_t a_basis = -1;
