@@ -45,6 +45,7 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   ReadPositive(r, "merge_angle_deg", &o.merge_angle_deg);
   ReadPositive(r, "merge_distance", &o.merge_distance);
   ReadNonNegative(r, "piece_merge_angle_deg", &o.piece_merge_angle_deg);
+  ReadNonNegative(r, "overlap_merge_angle_deg", &o.overlap_merge_angle_deg);
   ReadPositive(r, "min_em_points", &o.min_em_points);
   ReadPositive(r, "inlier_sigmas", &o.inlier_sigmas);
   ReadPositive(r, "min_points", &o.min_points);

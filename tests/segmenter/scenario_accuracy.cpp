@@ -115,4 +115,34 @@ ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_
   return acc;
 }
 
+int FramesWithAWallTwice(const std::string& scenario_file, double noise_sigma, uint32_t seed,
+                         int64_t first, int64_t last, const Options& options) {
+  sim::ServiceOptions sim_options = sim::LoadServiceOptions(scenario_file);
+  sim_options.sim.sensor.noise_sigma = noise_sigma;
+  sim_options.sim.sensor.seed = seed;
+  sim::Simulation simulation(sim_options.sim);
+  Segmenter segmenter(options);
+  const double cos_max = std::cos(20.0 * M_PI / 180.0);
+  int frames = 0;
+  for (int64_t k = first; k <= last && k < simulation.NumIterations(); ++k) {
+    const sim::Scan scan = simulation.Frame(k);
+    Cloud cloud;
+    cloud.Reserve(scan.points.size());
+    for (const auto& p : scan.points) cloud.Add(p);
+    std::vector<DetectedPlane> walls;
+    for (const DetectedPlane& p : segmenter.Segment(cloud).planes) {
+      if (std::fabs(p.normal.z()) < 0.1f) walls.push_back(p);
+    }
+    bool twice = false;
+    for (size_t i = 0; i < walls.size() && !twice; ++i) {
+      for (size_t j = i + 1; j < walls.size() && !twice; ++j) {
+        twice = walls[i].normal.dot(walls[j].normal) > cos_max &&
+                (walls[i].centroid - walls[j].centroid).norm() < 0.1f;
+      }
+    }
+    frames += twice;
+  }
+  return frames;
+}
+
 }  // namespace relplane::segmenter::testing

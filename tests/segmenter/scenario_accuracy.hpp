@@ -2,7 +2,10 @@
 // Segmenter accuracy on the simulator's scenarios (relplane_sim) against the true world:
 // precision and recall of detected planes, normal-angle and offset errors.
 
+#include <cstdint>
 #include <string>
+
+#include "relplane/segmenter/options.hpp"
 
 namespace relplane::segmenter::testing {
 
@@ -21,5 +24,11 @@ struct ScenarioAccuracy {
 // Runs the scenario's simulator (its `sim` section, range noise replaced by `noise_sigma`) and
 // segments every `step`-th frame with one streaming Segmenter with default options.
 ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_sigma, int step);
+
+// Frames first..last of the scenario (sensor noise `noise_sigma`, noise seed `seed`), segmented
+// in order by one Segmenter with `options`, in which two walls lie over each other: vertical
+// detections facing within 20 degrees of each other with centroids within 0.1 m.
+int FramesWithAWallTwice(const std::string& scenario_file, double noise_sigma, uint32_t seed,
+                         int64_t first, int64_t last, const Options& options);
 
 }  // namespace relplane::segmenter::testing

@@ -111,14 +111,49 @@ void Absorb(const PieceStats& b, const Options& options, PieceStats* a) {
   }
 }
 
+// Shared length of [a0, a1] and [b0, b1] over the shorter one's (0 for an empty one).
+float OverlapShare(float a0, float a1, float b0, float b1) {
+  const float shorter = std::min(a1 - a0, b1 - b0);
+  if (!(shorter > 0.0f)) return 0.0f;
+  return std::max(0.0f, std::min(a1, b1) - std::max(a0, b0)) / shorter;
+}
+
+// Do two vertical pieces lie over each other, along the wall and up it, over most of the
+// smaller one? A depth sensor sees one surface where they overlap (a nearer one would hide the
+// other), so with each centroid in the other's plane they are one surface that EM split between
+// two planes.
+bool Overlap(const DetectedPlane& p, const DetectedPlane& q) {
+  const Eigen::Vector3f u = Eigen::Vector3f::UnitZ().cross(p.normal).normalized();
+  auto extent = [&](const DetectedPlane& r, float* a0, float* a1, float* z0, float* z1) {
+    *a0 = *z0 = std::numeric_limits<float>::infinity();
+    *a1 = *z1 = -std::numeric_limits<float>::infinity();
+    for (const auto& x : r.vertices) {
+      *a0 = std::min(*a0, u.dot(x));
+      *a1 = std::max(*a1, u.dot(x));
+      *z0 = std::min(*z0, x.z());
+      *z1 = std::max(*z1, x.z());
+    }
+  };
+  float pa0, pa1, pz0, pz1, qa0, qa1, qz0, qz1;
+  extent(p, &pa0, &pa1, &pz0, &pz1);
+  extent(q, &qa0, &qa1, &qz0, &qz1);
+  constexpr float kMostOfIt = 0.5f;
+  return OverlapShare(pa0, pa1, qa0, qa1) >= kMostOfIt &&
+         OverlapShare(pz0, pz1, qz0, qz1) >= kMostOfIt;
+}
+
 bool Mergeable(const PieceStats& a, const PieceStats& b, const Options& options) {
-  const float cos_merge =
-      std::cos(options.piece_merge_angle_deg * static_cast<float>(M_PI) / 180.0f);
   const DetectedPlane& p = a.plane;
   const DetectedPlane& q = b.plane;
-  if (p.normal.dot(q.normal) < cos_merge) return false;
   if (std::fabs(p.normal.dot(q.centroid) + p.d) > options.merge_distance) return false;
   if (std::fabs(q.normal.dot(p.centroid) + q.d) > options.merge_distance) return false;
+  const float cosine = p.normal.dot(q.normal);
+  const float cos_overlap =
+      std::cos(options.overlap_merge_angle_deg * static_cast<float>(M_PI) / 180.0f);
+  if (a.vertical && b.vertical && cosine >= cos_overlap && Overlap(p, q)) return true;
+  const float cos_merge =
+      std::cos(options.piece_merge_angle_deg * static_cast<float>(M_PI) / 180.0f);
+  if (cosine < cos_merge) return false;
   Eigen::Vector3f u, v;
   Axes(p.normal, &u, &v);
   const float gap = ConvexPolygonDistance(ConvexHull(Project(p.vertices, p.centroid, u, v)),

@@ -38,7 +38,10 @@ RayNoiseFit FitOutRayNoise(const Eigen::Matrix3d& scatter, const Eigen::Matrix3d
 // within options.merge_distance of the other plane) and whose extents touch (within cell_reach
 // cells). EM keeps such surfaces apart when the data bend slightly (a depth camera's distortion
 // puts a strip of floor 1-2 cm off the rest); pieces split by a gap (a door) do not touch and stay
-// apart. `merged_into[k]` receives the index of the piece k ended up in.
+// apart. Vertical pieces lying over each other (along the wall and up it, over half the smaller
+// one), each centroid within merge_distance of the other's plane, merge within the wider
+// options.overlap_merge_angle_deg: a depth sensor sees one surface there, which EM split between
+// two planes. `merged_into[k]` receives the index of the piece k ended up in.
 std::vector<PieceStats> MergeTouchingPieces(std::vector<PieceStats> pieces, const Options& options,
                                             std::vector<int32_t>* merged_into);
 
