@@ -59,6 +59,19 @@ TEST(MapMetrics, DuplicatedWallIsCountedOnceAsADuplicate) {
   EXPECT_NEAR(m.walls[0].offset_error_m, 0.0, 1e-9);
 }
 
+TEST(MapMetrics, APartitionsOtherFaceIsNoDuplicate) {
+  MapSnapshot map = PerfectMap();
+  // The south wall as seen from beyond it (its normal the other way): the wall's other face.
+  map.planes.push_back(Wall(14, {3, -2.02}, {0, -2.02}));
+  // And a second plane facing the same way as the first: a duplicate still.
+  map.planes.push_back(Wall(15, {0.5, -1.95}, {2.5, -1.95}));
+  const MapMetrics m = Score(map);
+  EXPECT_EQ(m.walls[0].mapped_ids.size(), 3u);
+  EXPECT_EQ(m.other_faces, 1);
+  EXPECT_EQ(m.duplicates, 1);
+  EXPECT_EQ(m.fragments, 0);
+}
+
 TEST(MapMetrics, ThreeCopiesOfOneWallAreTwoDuplicates) {
   MapSnapshot map = PerfectMap();
   map.planes.push_back(Wall(14, {0, -1.9}, {3, -1.9}));

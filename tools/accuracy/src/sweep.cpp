@@ -169,7 +169,8 @@ std::string SweepJson(const std::vector<SweepRun>& runs, const Targets& targets,
     w.Field("ate_rmse_m", r.trajectory.ate_rmse_m).Field("ate_max_m", r.trajectory.ate_max_m);
     w.Field("ate_aligned_rmse_m", r.trajectory.ate_aligned_rmse_m);
     w.Field("yaw_rmse_deg", r.trajectory.yaw_rmse_deg);
-    w.Field("duplicates", r.map.duplicates).Field("fragments", r.map.fragments);
+    w.Field("duplicates", r.map.duplicates).Field("other_faces", r.map.other_faces);
+    w.Field("fragments", r.map.fragments);
     w.Field("spurious", r.map.spurious).Field("missed", r.map.missed);
     w.Field("walls_mapped", r.map.walls_mapped).Field("expected_walls", r.map.expected_walls);
     w.Field("normal_error_max_deg", r.map.normal_error_deg.max);

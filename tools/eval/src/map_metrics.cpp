@@ -90,23 +90,29 @@ const WallLine& ById(const std::vector<WallLine>& walls, int64_t id) {
 }
 
 // The matches of one true wall beyond its best: a plane covering part of the wall that a better
-// match already covers maps that part twice (a duplicate); a plane covering only what no better
-// match covers is the wall mapped in pieces (a fragment: an outer wall seen from each room
-// between the partitions that meet it, where the sensor never sees that the pieces are one).
+// match facing the same way already covers maps that part twice (a duplicate); one covering
+// only what better matches facing the other way cover is the wall's other face (a partition
+// seen from both rooms: the world's walls have no thickness, its faces two surfaces); one
+// covering only what no better match covers is the wall mapped in pieces (a fragment: an outer
+// wall seen from each room between the partitions that meet it, where the sensor never sees that
+// the pieces are one).
 void CountExtraMatches(const WallLine& truth,
                        const std::vector<std::pair<Candidate, int64_t>>& best_first,
                        const std::vector<WallLine>& mapped, const MatchOptions& options,
                        MapMetrics* m) {
   const Eigen::Vector2d dir = truth.segment.Direction();
   for (size_t k = 1; k < best_first.size(); ++k) {
-    const auto [a0, a1] = Extent(ById(mapped, best_first[k].second).segment, dir);
+    const WallLine& a = ById(mapped, best_first[k].second);
+    const auto [a0, a1] = Extent(a.segment, dir);
     const double needed = std::min(options.overlap_min_m, 0.5 * (a1 - a0));
-    bool covered = false;
+    bool covered = false, other_face = false;
     for (size_t j = 0; j < k && !covered; ++j) {
-      const auto [b0, b1] = Extent(ById(mapped, best_first[j].second).segment, dir);
-      covered = std::min(a1, b1) - std::max(a0, b0) >= needed;
+      const WallLine& b = ById(mapped, best_first[j].second);
+      const auto [b0, b1] = Extent(b.segment, dir);
+      if (std::min(a1, b1) - std::max(a0, b0) < needed) continue;
+      (a.normal.dot(b.normal) > 0.0 ? covered : other_face) = true;
     }
-    ++(covered ? m->duplicates : m->fragments);
+    ++(covered ? m->duplicates : other_face ? m->other_faces : m->fragments);
   }
 }
 

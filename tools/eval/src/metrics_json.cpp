@@ -49,7 +49,8 @@ void WriteMap(JsonWriter& json, const MapMetrics& m) {
   json.Field("mapped_walls", m.mapped_walls);
   json.Field("mapped_without_extent", m.mapped_without_extent);
   json.Field("walls_mapped", m.walls_mapped).Field("duplicates", m.duplicates);
-  json.Field("fragments", m.fragments).Field("spurious", m.spurious);
+  json.Field("other_faces", m.other_faces).Field("fragments", m.fragments);
+  json.Field("spurious", m.spurious);
   json.Field("on_short_walls", m.on_short_walls).Field("missed", m.missed);
   WriteSummary(json, "normal_error_deg", m.normal_error_deg);
   WriteSummary(json, "offset_error_m", m.offset_error_m);

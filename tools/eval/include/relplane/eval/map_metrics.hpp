@@ -60,7 +60,11 @@ struct MapMetrics {
   int64_t mapped_walls = 0;
   int64_t mapped_without_extent = 0;
   int64_t walls_mapped = 0;  // true walls with at least one match
-  int64_t duplicates = 0;    // extra matches covering part of the wall a better match covers
+  // Extra matches covering part of the wall a better match facing the same way covers.
+  int64_t duplicates = 0;
+  // Extra matches covering only parts that better matches facing the other way cover: the
+  // wall's other face.
+  int64_t other_faces = 0;
   int64_t fragments = 0;     // extra matches covering only parts no better match covers
   int64_t spurious = 0;      // mapped walls matching no true wall
   int64_t on_short_walls = 0;  // mapped walls on true walls too short to score (door jambs)
