@@ -77,6 +77,37 @@ TEST(MotionModel, StandsStillWhileTurningOnTheSpot) {
   EXPECT_LE(r.max_error, 0.051) << Describe(r);
 }
 
+TEST(MotionModel, AFixedPoseOrTwoBetweenOpenSpellsKeepsTheVelocity) {
+  // Walls fix the position for a moment between two spells the §II.E motion model carries (a
+  // door jamb seen for two iterations beside the one wall face in view): the velocity learnt
+  // before still holds, and the position must not stand still after.
+  IdealSegmenter segmenter(HallwayWithOneDoor(), Frustum{});
+  Mapper mapper;
+  const std::vector<geometry::Pose2> poses = Drive({{0, 0}, {8, 0}}, 1.0, 1.0);
+  ASSERT_GT(poses.size(), 200u);
+  // Everything in view while the velocity is learnt and for the moment at iterations 45-46 (the
+  // door 0.5 m ahead); otherwise only the right-hand wall, which fixes nothing along the hallway.
+  constexpr int kRightWall = 5;
+  int fixed_after = 0, open_after = 0;
+  double worst = 0.0;
+  for (size_t k = 0; k < poses.size(); ++k) {
+    const bool all = k <= 20 || k == 45 || k == 46;
+    std::vector<PlaneInput> planes;
+    for (const Seen& seen : segmenter.Observe(poses[k])) {
+      if (all || seen.wall == kRightWall) planes.push_back(seen.plane);
+    }
+    const PoseEstimate est = mapper.Process(static_cast<int64_t>(k), planes);
+    if (k == 45 || k == 46) fixed_after += est.status == PoseStatus::kTracking;
+    if (k > 46) open_after += est.status == PoseStatus::kMotionModel;
+    worst = std::max(worst, (est.pose.Translation() - poses[k].Translation()).norm());
+  }
+  ASSERT_EQ(fixed_after, 2) << "the door did not fix the position: the test shows nothing";
+  ASSERT_GT(open_after, 150);
+  // Learnt from the two fixed poses alone, the velocity was unknown and the position stood
+  // still at x = 1.5 while the sensor drove on to 8 m.
+  EXPECT_LT(worst, 0.05);
+}
+
 // A 30 m hallway, 2 m wide, with an opening 4-5 m ahead in its right wall (no door frame: the
 // wall's two ends only) and a door recess 10 m ahead, out of an 8 m sensor's range at the start:
 // every wall seen first runs along the hallway, and nothing fixes the position along it.
