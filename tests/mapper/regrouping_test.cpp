@@ -194,6 +194,45 @@ TEST(Regrouping, APlacementCarriesTheSpreadOfThePairingsThatPlacedIt) {
   EXPECT_LT(map.members.at(map.basis == b ? c : b).variance, 1e-6);
 }
 
+// §II.C: a pairing is static over a sub-interval; over the whole interval its sub-intervals
+// must agree too. C's ends stand still while seen at first and again after a gap, but 0.2 m
+// further along (each stretch static on its own): the mean of the two places is neither, and
+// the pairing, 10 cm wide, is no point link. C is placed by its line only, which is right.
+// With the stretches agreeing, the same pairing is a point link.
+TEST(RelativeMap, APairingWhoseStaticStretchesDisagreeIsNoPointLink) {
+  const auto build = [](double shift, MapperState* state) {
+    MapperOptions options;
+    const int64_t a = 0, c = 1;
+    for (int64_t k = 0; k < 150; ++k) {
+      See(*state, a, k, kA0, kA1);
+      if (k < 60) See(*state, c, k, kC0, kC1);
+      if (k >= 100) See(*state, c, k, kC0 + Vector2d(shift, 0.0), kC1 + Vector2d(shift, 0.0));
+    }
+    AddGroup(*state, {a, c}, 0);
+    CompareMembers(*state, state->groups[0], 149, options);
+    return BuildRelativeMap(state->groups[0], *state, options.comparison);
+  };
+  MapperState agreeing;
+  const RelativeMap linked = build(0.0, &agreeing);
+  ASSERT_EQ(linked.members.size(), 2u);
+  ASSERT_EQ(linked.members.at(0).known, Known::kPoint) << "the test shows nothing";
+  EXPECT_EQ(linked.members.at(1).known, Known::kPoint);
+
+  MapperState disagreeing;
+  const RelativeMap map = build(0.2, &disagreeing);
+  ASSERT_EQ(map.members.size(), 2u);
+  const Placement& a = map.members.at(0);
+  const Placement& c = map.members.at(1);
+  ASSERT_EQ(a.known, Known::kPoint);
+  ASSERT_EQ(c.known, Known::kLine);
+  // C's line (y = -2) from A's reference edge (x = 4, y = -1 or 1), as the world has it.
+  const RltPlane& across = disagreeing.planes.at(0);
+  const Vector2d edge = SeenFrom(across.Latest(), SensorAt(across.LastSeen())).edge[a.ref];
+  const double truth = std::abs(edge.y() + 2.0);
+  ASSERT_TRUE(std::abs(truth - 1.0) < 0.01 || std::abs(truth - 3.0) < 0.01) << truth;
+  EXPECT_NEAR(std::abs(NormalOf(c.alpha).dot(c.point - a.point)), truth, 0.001);
+}
+
 // The static pairings of a group form two sets with none between them: A (across the way) and
 // B (on the left) show their ends for the first 80 iterations, then the view cuts both; C (on
 // the right) and H (the corner C meets) show theirs from then on, for 120 iterations, so a

@@ -309,7 +309,7 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
   for (size_t g = from; g < state.groups.size(); ++g) {
     Group& group = state.groups[g];
     if (group.dirty) {
-      group.relative = BuildRelativeMap(group, state);
+      group.relative = BuildRelativeMap(group, state, options.comparison);
       group.dirty = false;
     }
     // Through its links as every comparison between mapped walls turns them, as localisation

@@ -74,7 +74,7 @@ bool JoinAnother(MapperState& state, size_t left, int64_t id, int64_t now,
   joined.groups.insert(std::upper_bound(joined.groups.begin(), joined.groups.end(), group.id),
                        group.id);
   CompareWithMembers(state, group, id, now, options);
-  if (group.stage != GroupStage::kNew) group.order = ChooseOrder(group, state);
+  if (group.stage != GroupStage::kNew) group.order = ChooseOrder(group, state, options.comparison);
   return true;
 }
 
@@ -136,13 +136,13 @@ void Regroup(MapperState& state, int64_t now, const MapperOptions& options) {
     Group& group = state.groups[g];
     const int64_t age = now - group.created;
     if (o.enabled && group.stage == GroupStage::kNew && age >= o.reorder_after) {
-      group.order = ChooseOrder(group, state);
+      group.order = ChooseOrder(group, state, options.comparison);
       group.stage = GroupStage::kReordered;
       group.dirty = true;
     }
     if (o.enabled && group.stage == GroupStage::kReordered && age >= o.regroup_after) {
       RegroupMembers(state, g, now, options);
-      group.order = ChooseOrder(group, state);
+      group.order = ChooseOrder(group, state, options.comparison);
       group.stage = GroupStage::kRegrouped;
       group.dirty = true;
     }

@@ -16,13 +16,19 @@ constexpr double kParallelSin = 0.17;   // two lines this close in orientation a
 Eigen::Matrix2d Rot(double a) { return Eigen::Rotation2Dd(a).toRotationMatrix(); }
 
 // B's edge j seen from A's edge i, also through the other edge of a wall seen whole.
-bool PairThrough(const Comparison& c, const RltPlane& a, int i, int* j, Vector2d* delta,
-                 double* weight, double* variance) {
+bool PairThrough(const Comparison& c, const RltPlane& a, int i, double max_std, int* j,
+                 Vector2d* delta, double* weight, double* variance) {
   const DirectedStats& s = c.From(a.Id());
   *weight = 0.0;
   for (int ii = 0; ii < 2; ++ii) {
     if (ii != i && !a.FullLengthKnown()) continue;
     for (int jj = 0; jj < 2; ++jj) {
+      // A pairing whose static sub-intervals disagree by more than one may spread is no static
+      // pairing over the whole interval (§II.C): the two edges did not keep one relative place.
+      // Taken all the same where nothing better linked the two walls, one 13 cm wide put a
+      // pilaster's corner 9 cm back along the hallway, the pose with it, for the whole lap
+      // (loop_other_sensor, σ = 1 cm, seed 24).
+      if (s.PairStd(ii, jj) > max_std) continue;
       // Quality of a pairing: its iterations, discounted by its spread over the whole interval.
       const double spread = s.PairStd(ii, jj) / kSpreadScale;
       // Through the other edge only when no direct pairing is as good: the full length adds
@@ -43,14 +49,15 @@ bool PairThrough(const Comparison& c, const RltPlane& a, int i, int* j, Vector2d
 
 // The point placement of `to` from placed member `from` through their static pairing.
 bool PlacePoint(const Placement& from_placed, int64_t from, int64_t to, MapperState& state,
-                Placement* out, double* weight) {
+                double max_std, Placement* out, double* weight) {
   if (from_placed.known != Known::kPoint) return false;
   const Comparison* c = state.FindComparison(from, to);
   if (c == nullptr) return false;
   int j = -1;
   Vector2d delta;
   double variance = 0.0;
-  if (!PairThrough(*c, *state.Plane(from), from_placed.ref, &j, &delta, weight, &variance)) {
+  if (!PairThrough(*c, *state.Plane(from), from_placed.ref, max_std, &j, &delta, weight,
+                   &variance)) {
     return false;
   }
   out->alpha = from_placed.alpha + c->DeltaAlpha(from);
@@ -170,7 +177,8 @@ double EdgeEvidence(const Group& group, const MapperState& state, int64_t m, int
 // Prim's algorithm over static pairings: repeatedly attach the unplaced member with the
 // strongest static pairing to a member placed with a point. Records the links used in `order`
 // when given.
-void GrowByPoints(const Group& group, MapperState& state, RelativeMap* map, ChainOrder* order) {
+void GrowByPoints(const Group& group, MapperState& state, double max_std, RelativeMap* map,
+                  ChainOrder* order) {
   struct Candidate {
     double weight = 0.0;
     int64_t from = -1;
@@ -183,7 +191,7 @@ void GrowByPoints(const Group& group, MapperState& state, RelativeMap* map, Chai
       if (map->members.count(to)) continue;
       Candidate cand;
       cand.from = from;
-      if (PlacePoint(p, from, to, state, &cand.placed, &cand.weight) &&
+      if (PlacePoint(p, from, to, state, max_std, &cand.placed, &cand.weight) &&
           cand.weight > candidates[to].weight) {
         candidates[to] = cand;
       }
@@ -220,7 +228,7 @@ bool LinksToMap(const RelativeMap& chain, const MapperState& state, int64_t grou
 // The basis and its reference edge among `candidates` (all members when empty): the most
 // static-pairing evidence; the map grown from it by points, its links recorded in `order`.
 RelativeMap GrowFromBest(const Group& group, MapperState& state,
-                         const std::set<int64_t>& candidates, ChainOrder* order) {
+                         const std::set<int64_t>& candidates, double max_std, ChainOrder* order) {
   double best = -1.0;
   order->basis = -1;
   order->basis_ref = -1;
@@ -236,7 +244,7 @@ RelativeMap GrowFromBest(const Group& group, MapperState& state,
     }
   }
   RelativeMap map = StartAt(order->basis, order->basis_ref);
-  GrowByPoints(group, state, &map, order);
+  GrowByPoints(group, state, max_std, &map, order);
   return map;
 }
 
@@ -288,7 +296,7 @@ void RefineOrientations(const MapperState& state, RelativeMap* map) {
 }
 
 // The comparison order that uses the most iterations (§II.F reordering) and the map it gives.
-RelativeMap Choose(const Group& group, MapperState& state, ChainOrder* order) {
+RelativeMap Choose(const Group& group, MapperState& state, double max_std, ChainOrder* order) {
   // The static pairings may form sets with no pairing between them: the chain from a basis
   // reaches its own set only, and the others are placed by lines. §II.D places a group through
   // the planes an earlier group placed, so the basis is in a set holding one whose static end
@@ -297,17 +305,17 @@ RelativeMap Choose(const Group& group, MapperState& state, ChainOrder* order) {
   // group of six walls placed along the hallway from its prior alone (0.2 m off, and the whole
   // loop after it). The other members' chains are grown only when the best one's does not link
   // (growing every member's chain at every build tripled the time per iteration on a large map).
-  RelativeMap map = GrowFromBest(group, state, {}, order);
+  RelativeMap map = GrowFromBest(group, state, {}, max_std, order);
   if (!LinksToMap(map, state, group.id)) {
     std::set<int64_t> linked;  // members whose chain reaches a static end on the global map
     for (int64_t m : group.members) {
       int ref = -1;
       if (m == order->basis || EdgeEvidence(group, state, m, &ref) <= 0.0) continue;
       RelativeMap chain = StartAt(m, ref);
-      GrowByPoints(group, state, &chain, nullptr);
+      GrowByPoints(group, state, max_std, &chain, nullptr);
       if (LinksToMap(chain, state, group.id)) linked.insert(m);
     }
-    if (!linked.empty()) map = GrowFromBest(group, state, linked, order);
+    if (!linked.empty()) map = GrowFromBest(group, state, linked, max_std, order);
   }
   PlaceRest(group, state, &map, order);
   RefineOrientations(state, &map);
@@ -332,13 +340,15 @@ bool EdgePoint(const RltPlane& plane, const Placement& placement, int edge, Vect
   return true;
 }
 
-ChainOrder ChooseOrder(const Group& group, MapperState& state) {
+ChainOrder ChooseOrder(const Group& group, MapperState& state,
+                       const ComparisonOptions& comparison) {
   ChainOrder order;
-  if (!group.members.empty()) Choose(group, state, &order);
+  if (!group.members.empty()) Choose(group, state, comparison.static_std, &order);
   return order;
 }
 
-RelativeMap BuildRelativeMap(const Group& group, MapperState& state) {
+RelativeMap BuildRelativeMap(const Group& group, MapperState& state,
+                             const ComparisonOptions& comparison) {
   const auto& members = group.members;
   if (members.empty()) return {};
   // A member that joined after the order was chosen is not in it: the order is chosen afresh
@@ -352,7 +362,7 @@ RelativeMap BuildRelativeMap(const Group& group, MapperState& state) {
   }
   if (!kept) {
     ChainOrder fresh;
-    return Choose(group, state, &fresh);
+    return Choose(group, state, comparison.static_std, &fresh);
   }
   // §II.F: the order chosen at the reordering, with the comparisons' latest averages; a link
   // whose static pairing has gone falls back to the line, then the orientation.
@@ -366,7 +376,7 @@ RelativeMap BuildRelativeMap(const Group& group, MapperState& state) {
     const Placement p = from->second;
     Placement q;
     double weight = 0.0;
-    if (PlacePoint(p, link.from, link.to, state, &q, &weight) ||
+    if (PlacePoint(p, link.from, link.to, state, comparison.static_std, &q, &weight) ||
         PlaceLine(p, link.from, link.to, state, &q) ||
         PlaceAngle(p, link.from, link.to, state, &q)) {
       map.members[link.to] = q;

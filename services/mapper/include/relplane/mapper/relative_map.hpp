@@ -11,12 +11,15 @@ namespace relplane::mapper {
 // static pairings weighted by their common interval (discounted by their spread), which also
 // routes around parallel pairs whose static edges are ambiguous (§II.C). Members reached
 // through no static pairing are chained by their line (known == kLine) or only their
-// orientation (kAngle).
-ChainOrder ChooseOrder(const Group& group, MapperState& state);
+// orientation (kAngle). A point link needs a static pairing whose spread over all its static
+// sub-intervals stays within `comparison.static_std` (§II.C's bound for one sub-interval).
+ChainOrder ChooseOrder(const Group& group, MapperState& state,
+                       const ComparisonOptions& comparison = {});
 
 // Builds the relative map of `group` from the stored comparisons, along `group.order` once the
 // group has been reordered, else along the order chosen now.
-RelativeMap BuildRelativeMap(const Group& group, MapperState& state);
+RelativeMap BuildRelativeMap(const Group& group, MapperState& state,
+                             const ComparisonOptions& comparison = {});
 
 // The position of `plane`'s edge `edge` given a placement of its edge `placement.ref`, using the
 // wall's length when it has been seen whole. False when the edges differ and it has not.
