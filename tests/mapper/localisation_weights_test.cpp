@@ -124,5 +124,82 @@ TEST(Localisation, AWallFixesThePositionWhereItsPointsAreNotWhereItsLineIsExtrap
   EXPECT_NEAR(est.pose.y, 0.0, 0.002);
 }
 
+// A wall from `along0` to `along1` on its line (normal angle `normal_angle`, offset d), from
+// z0 to z1 in the sensor frame, as a sensor whose rays lie on a grid of `step` in azimuth and
+// elevation samples it: its support is the rays that hit it, counted (not from its solid angle).
+Observation SampledWall(double normal_angle, double d, double along0, double along1, double z0,
+                        double z1, double step) {
+  Observation obs = Seen(normal_angle, d, along0, along1, 0, 0.005);
+  obs.z_min = z0;
+  obs.z_max = z1;
+  int hits = 0;
+  for (double az = -M_PI; az < M_PI; az += step) {
+    const Vector2d u(std::cos(az), std::sin(az));
+    const double towards = -obs.normal.dot(u);
+    if (towards <= 1e-9) continue;
+    const double r = d / towards;  // horizontal range to the wall's line along this azimuth
+    const double s = obs.Direction().dot(r * u - obs.edge[0]);
+    if (s < 0.0 || s > (obs.edge[1] - obs.edge[0]).norm()) continue;
+    for (double el = -M_PI / 2; el < M_PI / 2; el += step) {
+      const double z = r * std::tan(el);
+      hits += z >= z0 && z <= z1;
+    }
+  }
+  obs.support = hits;
+  return obs;
+}
+
+TEST(LearnedFrustum, LearnsTheAngularStepFromTheWallsItSees) {
+  const double step = 0.006;  // rad
+  LearnedFrustum frustum;
+  EXPECT_EQ(frustum.AngularStep(), 0.0);
+  for (int k = 0; k < 64; ++k) {
+    // Walls ahead and to the sides, 1-4 m off, seen over 1-3 m of their length.
+    const double angle = M_PI + 0.4 * std::sin(0.7 * k);
+    const double d = 1.0 + 3.0 * (k % 7) / 6.0;
+    frustum.ObserveSampling(SampledWall(angle, d, -1.5 + 0.1 * (k % 5), 1.5, -1.2, 1.4, step));
+  }
+  EXPECT_NEAR(frustum.AngularStep(), step, 0.03 * step);
+  // Samples land step r^2 / d apart along a wall at an edge r away, the wall d off.
+  EXPECT_NEAR(frustum.EdgeSpacing({4.8, -1.25}, 1.25), frustum.AngularStep() * 24.6025 / 1.25,
+              1e-9);
+}
+
+// §II.E with the motion known: one wall in view (the left, y = 1), its mapped end 4.8 m ahead at
+// a grazing angle, sampled in columns 12 cm apart, seen 8 cm short (the last column). The learnt
+// motion's prediction is the better position along the wall; with no motion known the end is
+// all there is.
+TEST(Localisation, WithTheMotionKnownACoarselySampledEndDoesNotMoveThePosition) {
+  const double step = 0.006;
+  LearnedFrustum frustum;
+  for (int k = 0; k < 64; ++k) {
+    frustum.ObserveSampling(SampledWall(M_PI, 1.0 + 0.05 * k, -1.0, 1.0, -1.2, 1.4, step));
+  }
+  frustum.Observe({1.0, 1.0});  // a view 45 degrees either side
+  frustum.Observe({1.0, -1.0});
+  ASSERT_GT(frustum.EdgeSpacing({4.8, 1.0}, 1.0), 0.1);
+  // The wall's end at x = 4.8, seen at 4.72.
+  Observation seen = Seen(-M_PI / 2, 1.0, 0.5, 4.72, 4000, 0.005);
+  seen.iteration = 1;
+  seen.cut[0] = true;  // its near edge is where the view cuts it
+  Observation mapped = Seen(-M_PI / 2, 1.0, 0.5, 4.8, 4000, 0.005);
+  mapped.iteration = 1;
+  std::vector<RltPlane> planes;
+  planes.emplace_back(0, mapped, 0.05, 100);
+  Placement world;
+  world.alpha = mapped.Alpha();
+  const int far = mapped.edge[1].x() > mapped.edge[0].x() ? 1 : 0;
+  world.point = mapped.edge[far];
+  world.ref = far;
+  world.known = Known::kPoint;
+  const std::vector<Sighting> sightings = {{&seen, &planes[0], world}};
+  const geometry::Pose2 predicted{0.0, 0.0, 0.0};
+  const PoseEstimate known = Localise(sightings, predicted, frustum, {}, 0, true);
+  EXPECT_EQ(known.status, PoseStatus::kMotionModel);
+  EXPECT_NEAR(known.pose.x, 0.0, 1e-6);
+  const PoseEstimate unknown = Localise(sightings, predicted, frustum, {}, 0, false);
+  EXPECT_NEAR(unknown.pose.x, 0.08, 1e-3);
+}
+
 }  // namespace
 }  // namespace relplane::mapper

@@ -91,6 +91,7 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
     if (!obs) continue;
     frustum_.Observe(obs->edge[0]);
     frustum_.Observe(obs->edge[1]);
+    frustum_.ObserveSampling(*obs);
     observations.push_back(std::move(*obs));
   }
   // §II.A: one plane per surface and iteration, as an rltplane stores them.
@@ -341,8 +342,8 @@ PoseEstimate Mapper::Localise(int64_t iteration, const std::vector<int64_t>& vis
   }
   bool ends_seen = false;
   auto localise = [&](const geometry::Pose2& previous) {
-    PoseEstimate est =
-        mapper::Localise(sightings, previous, frustum_, options_.localisation, held_);
+    PoseEstimate est = mapper::Localise(sightings, previous, frustum_, options_.localisation, held_,
+                                        motion_known_);
     if (est.status != PoseStatus::kMotionModel || motion_known_ || ends_seen) return est;
     // The walls leave a direction open and the motion is not known (the start, moving off
     // after a turn on the spot; not while turning): the wall ends seen from poses the walls fixed

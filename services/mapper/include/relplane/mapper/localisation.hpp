@@ -58,6 +58,13 @@ class LearnedFrustum {
   // and the last sample in range may lie well short of the limit).
   bool Clipped(const Eigen::Vector2d& edge, const Eigen::Vector2d& other) const;
   static constexpr double kEdgeNoise = 0.03;  // m, a wall end's position noise (2 sigma)
+  // The sensor's angular sampling step, learnt from the walls seen: a wall's solid angle over
+  // the points that support it is the solid angle per ray. Nought until enough are seen.
+  void ObserveSampling(const Observation& obs);
+  double AngularStep() const;
+  // How far apart the sensor's samples land along a wall at its edge `edge` (sensor frame), the
+  // wall's line `d` from the sensor: the step times r^2 / d. Nought while the step is unknown.
+  double EdgeSpacing(const Eigen::Vector2d& edge, double d) const;
 
  private:
   static constexpr double kBearingMargin = 0.035;  // rad (2 degrees)
@@ -74,6 +81,13 @@ class LearnedFrustum {
   int max_range_bin_ = 0;
   int observed_ = 0;
   double range_limit_ = std::numeric_limits<double>::infinity();
+  // Per observation, log of its solid angle per supporting point over bins of kStepBin.
+  static constexpr double kStepBin = 0.02;
+  static constexpr int kStepBins = 600;  // exp(-18) to exp(-6) sr: steps of 0.12 mrad to 50 mrad
+  static constexpr double kStepLogMin = -18.0;
+  std::vector<int> step_counts_ = std::vector<int>(kStepBins, 0);
+  int steps_observed_ = 0;
+  double step_ = 0.0;
 };
 
 // The standard deviation (rad) of an observed wall's orientation from its own fit: a line
@@ -122,6 +136,6 @@ Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& 
 // moved the position (`end_moved`): the sensor may have moved on a step in each.
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
                       const LearnedFrustum& frustum, const LocalisationOptions& options,
-                      int held = 0);
+                      int held = 0, bool motion_known = false);
 
 }  // namespace relplane::mapper
