@@ -50,7 +50,7 @@ void LearnedFrustum::Observe(const Eigen::Vector2d& edge) {
 }
 
 void LearnedFrustum::ObserveSampling(const Observation& obs) {
-  // Walls seen from nearby with plenty of points only: a sliver's extent says little.
+  // Walls with plenty of points only: a sliver's extent says little of its points' spacing.
   constexpr int kMinSupport = 500;
   constexpr int kSlices = 16;
   constexpr int kMinObserved = 30;

@@ -412,9 +412,9 @@ geometry::Pose2 Mapper::Predict(int64_t iteration, bool* known) const {
     if (p0 == state_.poses.end() || p1 == state_.poses.end()) return pose_;
     if (stretch > 0 && Turning(p1->second, pose_, kMinSpan)) return pose_;
     // Fixed poses must be consecutive enough to be one stretch of motion.
-    const auto held =
+    const auto in_stretch =
         static_cast<int64_t>(std::distance(fixed.lower_bound(i0), fixed.upper_bound(i1)));
-    if (i1 - i0 >= kMinSpan && held >= (i1 - i0) / 2) break;
+    if (i1 - i0 >= kMinSpan && in_stretch >= (i1 - i0) / 2) break;
     const auto first = fixed.find(i0);
     if (first == fixed.begin() || stretch + 1 >= kMaxStretches) return pose_;
     i1 = *std::prev(first);
