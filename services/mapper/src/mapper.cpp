@@ -341,9 +341,12 @@ PoseEstimate Mapper::Localise(int64_t iteration, const std::vector<int64_t>& vis
     }
   }
   bool ends_seen = false;
+  const int predicted_for = motion_known_ && !state_.fixed_poses.empty()
+                                ? static_cast<int>(iteration - *state_.fixed_poses.rbegin())
+                                : 0;
   auto localise = [&](const geometry::Pose2& previous) {
     PoseEstimate est = mapper::Localise(sightings, previous, frustum_, options_.localisation, held_,
-                                        motion_known_);
+                                        predicted_for);
     if (est.status != PoseStatus::kMotionModel || motion_known_ || ends_seen) return est;
     // The walls leave a direction open and the motion is not known (the start, moving off
     // after a turn on the spot; not while turning): the wall ends seen from poses the walls fixed

@@ -134,8 +134,10 @@ Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& 
 // value, and a mapped wall end seen at its predicted place pins the position along the wall.
 // `held`: the iterations in a row before this one in which no motion was known and no wall end
 // moved the position (`end_moved`): the sensor may have moved on a step in each.
+// `predicted_for`: where `previous` is a learnt velocity's prediction, the iterations it has
+// carried the position since the walls last fixed it; 0 where no motion is known.
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
                       const LearnedFrustum& frustum, const LocalisationOptions& options,
-                      int held = 0, bool motion_known = false);
+                      int held = 0, int predicted_for = 0);
 
 }  // namespace relplane::mapper
