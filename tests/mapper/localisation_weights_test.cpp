@@ -266,5 +266,42 @@ TEST(Localisation, WithTheMotionKnownAnEndFarFromAFreshPredictionIsNotTheWalls) 
   EXPECT_NEAR(wall.From(frustum, 0).pose.x, 0.07, 1e-3);
 }
 
+// §II.E with no motion known (turning on the spot, moving off after a turn): one wall in view,
+// the left (y = 1), known by its line only, its far end seen from poses the walls fixed at x =
+// `end_x` and seen now 8 cm nearer, as if the sensor had moved 8 cm forwards.
+PoseEstimate FromAnEndSeenBefore(const LearnedFrustum& frustum, double end_x) {
+  Observation seen = Seen(-M_PI / 2, 1.0, 0.5, end_x - 0.08, 4000, 0.005);
+  seen.iteration = 1;
+  seen.cut[0] = true;
+  const int far = seen.edge[1].x() > seen.edge[0].x() ? 1 : 0;
+  if (far == 0) std::swap(seen.cut[0], seen.cut[1]);
+  const std::vector<RltPlane> planes{RltPlane(0, seen, 0.05, 100)};
+  Placement line;
+  line.alpha = seen.Alpha();
+  line.point = {0.0, 1.0};
+  line.known = Known::kLine;
+  Sighting sighting{&seen, &planes[0], line};
+  sighting.end_seen[far] = true;
+  sighting.end[far] = {end_x, 1.0};
+  return Localise({sighting}, geometry::Pose2{0.0, 0.0, 0.0}, frustum, {}, 0, 0);
+}
+
+// A finely sampled end 2 m ahead shows the motion; one 4.8 m ahead at a grazing angle, sampled
+// in columns 14 cm apart, moves in steps of a column as the view turns, and the position is held
+// instead (turning on the spot at a corner, such ends stepped it 5 and 8 cm forwards).
+TEST(Localisation, WithNoMotionKnownOnlyAFinelySampledEndSeenBeforeMovesThePosition) {
+  const LearnedFrustum frustum = SampledFrustum();
+  ASSERT_LT(frustum.EdgeSpacing({2.0, 1.0}, 1.0), 2.0 * LearnedFrustum::kEdgeNoise);
+  ASSERT_GT(frustum.EdgeSpacing({4.8, 1.0}, 1.0), 2.0 * LearnedFrustum::kEdgeNoise);
+  const PoseEstimate fine = FromAnEndSeenBefore(frustum, 2.0);
+  EXPECT_EQ(fine.status, PoseStatus::kMotionModel);
+  EXPECT_TRUE(fine.end_moved);
+  EXPECT_NEAR(fine.pose.x, 0.08, 1e-6);
+  const PoseEstimate coarse = FromAnEndSeenBefore(frustum, 4.8);
+  EXPECT_EQ(coarse.status, PoseStatus::kMotionModel);
+  EXPECT_FALSE(coarse.end_moved);
+  EXPECT_NEAR(coarse.pose.x, 0.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace relplane::mapper
