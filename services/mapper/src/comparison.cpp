@@ -23,11 +23,11 @@ Eigen::Matrix2d RotationT(double alpha) {
 // map's cleanup: a 0.2 m piece beside a jamb is a median 2.4 degrees off on the noisy office).
 constexpr double kShortPieceBlur = 0.03;
 
+}  // namespace
+
 double PieceBlur(const Observation& obs) {
   return std::atan2(kShortPieceBlur, std::max(obs.Length(), 1e-3));
 }
-
-}  // namespace
 
 ObservationTerms ComparisonTerms(const Observation& obs) {
   ObservationTerms t;

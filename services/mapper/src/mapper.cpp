@@ -20,15 +20,24 @@ namespace relplane::mapper {
 namespace {
 
 // Turning on the spot (the paths' corners): the heading is seen whatever the walls leave open,
-// and a sensor turning faster than this is taken not to move on.
+// and a sensor turning faster than this is taken not to move on. Faster by more than twice the
+// heading's own error (PoseEstimate::yaw_sigma): walking through a door with only a jamb in view,
+// its heading's 0.013-0.019 rad changes frame to frame passed for turns, and over eight
+// iterations the position stood still on several and fell 14 cm behind (office_other_sensor,
+// σ = 1 cm, seed 41).
 constexpr double kTurnRate = 0.01;  // rad per iteration (17 deg/s at 30 Hz)
 // Iterations after the last pose mapped walls placed through which a frame with no mapped wall
-// in view still gets the learnt motion's pose (§II.E with no plane): a sixth of a second at 30 Hz.
-constexpr int64_t kMaxCoast = 5;
+// in view still gets the learnt motion's pose (§II.E with no plane): half a second at 30 Hz, as
+// long as the learnt velocity is trusted to carry the position off by no more than a wall end's
+// noise (2 mm an iteration, localisation.cpp, against 3 cm). A sixth of a second left a frame
+// without a pose walking through a door into an unmapped room, six frames with only the new
+// room's walls in view, the coasted pose 1 cm off (office_other_sensor, σ = 1 cm, seed 43).
+constexpr int64_t kMaxCoast = 15;
 
-bool Turning(const geometry::Pose2& from, const geometry::Pose2& to, int64_t iterations) {
+bool Turning(const geometry::Pose2& from, const geometry::Pose2& to, int64_t iterations,
+             double yaw_sigma = 0.0) {
   return std::abs(std::remainder(to.yaw - from.yaw, 2.0 * M_PI)) >
-         kTurnRate * static_cast<double>(iterations);
+         kTurnRate * static_cast<double>(iterations) + 2.0 * yaw_sigma;
 }
 
 }  // namespace
@@ -365,7 +374,8 @@ PoseEstimate Mapper::Localise(int64_t iteration, const std::vector<int64_t>& vis
     return mapper::Localise(sightings, previous, frustum_, options_.localisation, held_);
   };
   PoseEstimate estimate = localise(predicted_);
-  if (previous_iteration_ >= 0 && Turning(pose_, estimate.pose, iteration - previous_iteration_)) {
+  if (previous_iteration_ >= 0 &&
+      Turning(pose_, estimate.pose, iteration - previous_iteration_, estimate.yaw_sigma)) {
     // The turn starts now: the sensor did not walk on after all.
     estimate = localise(pose_);
   }

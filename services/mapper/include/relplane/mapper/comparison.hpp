@@ -84,6 +84,10 @@ struct SubInterval {
 // The terms of one observation (RltPlane keeps them with its observations).
 ObservationTerms ComparisonTerms(const Observation& obs);
 
+// rad: how far a piece's fitted orientation may be off whatever its points' spread says, a few
+// centimetres over its length (the segmenter gives a short piece some of its neighbour's points).
+double PieceBlur(const Observation& obs);
+
 class Comparison {
  public:
   Comparison(int64_t a, int64_t b) : a_(a), b_(b) {}

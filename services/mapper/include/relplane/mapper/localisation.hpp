@@ -22,6 +22,8 @@ struct PoseEstimate {
   // The §II.E motion model moved the position along the heading to a wall end seen uncut from
   // poses the walls fixed (no motion known, walls leaving that direction open).
   bool end_moved = false;
+  // rad: how far off the heading may be (the walls' fit sigmas and short-piece bias combined).
+  double yaw_sigma = 0.0;
 };
 
 // One observation of a mapped wall: what is seen now and where the map has it.
