@@ -55,8 +55,6 @@ TEST(OrientationSigma, MatchesTheSpreadOfLeastSquaresLineFits) {
   EXPECT_TRUE(std::isinf(OrientationSigma(Seen(M_PI, 2.0, -0.25, 0.25, 2, noise))));
 }
 
-// Two long walls (a corridor's sides and its end) and a 0.1 m jamb whose noisy normal is 5
-// degrees off: the heading follows the long walls.
 // Sightings of walls mapped where `seen` shows them from the origin, known by their lines;
 // `planes` holds their rltplanes.
 std::vector<Sighting> WhereSeen(const std::vector<Observation>& seen,
@@ -77,6 +75,8 @@ std::vector<Sighting> WhereSeen(const std::vector<Observation>& seen,
   return sightings;
 }
 
+// Two long walls (a corridor's sides and its end) and a 0.1 m jamb whose noisy normal is 5
+// degrees off: the heading follows the long walls.
 TEST(Localisation, AShortNoisyWallDoesNotTurnTheHeading) {
   const double jamb_error = 5.0 * M_PI / 180.0;
   // Sensor at the origin facing +x; walls in the sensor frame (the map is the same frame).
