@@ -272,36 +272,55 @@ TEST(Localisation, WithTheMotionKnownACoarselySampledEndDoesNotMoveThePosition) 
   EXPECT_NEAR(wall.From(frustum, 0).pose.x, 0.08, 1e-3);
 }
 
+// How much a mapped end counts against the learnt velocity's prediction when both are good to a
+// wall end's noise: less as its samples land further apart along the wall.
+double EndWeight(const LearnedFrustum& frustum, const OneWallEnd& wall) {
+  const double spacing = frustum.EdgeSpacing(wall.seen.edge[1], wall.seen.d);
+  const double noise2 = LearnedFrustum::kEdgeNoise * LearnedFrustum::kEdgeNoise;
+  return noise2 / (noise2 + spacing * spacing);
+}
+
 // §II.E with the motion known: the wall's mapped end 2 m ahead, finely sampled, seen 7 cm short
 // (the segmenter gave the wall's last piece to another plane). An iteration after the walls
 // fixed the position the learnt velocity's prediction is the better and the end is not the
-// wall's; 30 iterations on, its drift (6 cm) may be that much, and the end is weighed against it
-// (4:1); with no motion known the end is all there is.
+// wall's; 30 iterations on, its drift (6 cm) may be that much, and the end is weighed against it;
+// with no motion known the end is all there is.
 TEST(Localisation, WithTheMotionKnownAnEndFarFromAFreshPredictionIsNotTheWalls) {
   const LearnedFrustum frustum = SampledFrustum();
-  ASSERT_LT(frustum.EdgeSpacing({2.0, 1.0}, 1.0), LearnedFrustum::kEdgeNoise);
+  ASSERT_LE(frustum.EdgeSpacing({2.0, 1.0}, 1.0), LearnedFrustum::kEdgeNoise);
   const OneWallEnd wall(1.93, 2.0);
   const PoseEstimate fresh = wall.From(frustum, 1);
   EXPECT_EQ(fresh.status, PoseStatus::kMotionModel);
   EXPECT_NEAR(fresh.pose.x, 0.0, 1e-6);
-  EXPECT_NEAR(wall.From(frustum, 30).pose.x, 0.07 * 0.8, 1e-3);
+  const double w = EndWeight(frustum, wall), prediction = 0.25;  // (3 cm / 6 cm)^2
+  EXPECT_NEAR(wall.From(frustum, 30).pose.x, 0.07 * w / (w + prediction), 1e-4);
   EXPECT_NEAR(wall.From(frustum, 0).pose.x, 0.07, 1e-3);
 }
 
-// §II.E with the motion known: a finely sampled end seen 2.5 cm short of where it is mapped
-// (mapped from afar, its ends short by a column's spacing). The prediction an iteration after the
-// walls fixed the position is good to 2 mm and the end moves it by a fraction of a millimetre;
-// 15 iterations on, the prediction's drift is as large as an end's noise, and the two count
-// alike.
+// §II.E with the motion known: an end seen 2.5 cm short of where it is mapped (mapped from afar,
+// its ends short by a column's spacing). The prediction an iteration after the walls fixed the
+// position is good to 2 mm and the end moves it by a fraction of a millimetre; 15 iterations on,
+// the prediction's drift is a wall end's noise, and the end counts as much where its samples lie
+// closer than that, less where they lie further apart.
 TEST(Localisation, WithTheMotionKnownAnEndIsWeighedAgainstThePredictionByTheirNoise) {
   const LearnedFrustum frustum = SampledFrustum();
-  const OneWallEnd wall(1.975, 2.0);
-  const PoseEstimate fresh = wall.From(frustum, 1);
+  const OneWallEnd fine(1.375, 1.4);
+  ASSERT_LT(frustum.EdgeSpacing(fine.seen.edge[1], fine.seen.d), 0.02);
+  const PoseEstimate fresh = fine.From(frustum, 1);
   EXPECT_EQ(fresh.status, PoseStatus::kMotionModel);
   EXPECT_GT(fresh.pose.x, 0.0);
   EXPECT_LT(fresh.pose.x, 0.001);
-  EXPECT_NEAR(wall.From(frustum, 15).pose.x, 0.0125, 1e-3);
-  EXPECT_NEAR(wall.From(frustum, 0).pose.x, 0.025, 1e-3);
+  const double w_fine = EndWeight(frustum, fine);
+  EXPECT_GT(w_fine, 0.7);
+  EXPECT_NEAR(fine.From(frustum, 15).pose.x, 0.025 * w_fine / (w_fine + 1.0), 1e-4);
+  EXPECT_NEAR(fine.From(frustum, 0).pose.x, 0.025, 1e-3);
+  const OneWallEnd coarse(2.375, 2.4);
+  const double spacing = frustum.EdgeSpacing(coarse.seen.edge[1], coarse.seen.d);
+  ASSERT_GT(spacing, LearnedFrustum::kEdgeNoise);
+  ASSERT_LT(spacing, 2.0 * LearnedFrustum::kEdgeNoise);
+  const double w_coarse = EndWeight(frustum, coarse);
+  EXPECT_LT(w_coarse, 0.5);
+  EXPECT_NEAR(coarse.From(frustum, 15).pose.x, 0.025 * w_coarse / (w_coarse + 1.0), 1e-4);
 }
 
 // §II.E with no motion known (turning on the spot, moving off after a turn): one wall in view,

@@ -315,11 +315,13 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
             // With the motion known, an end whose samples land further apart than its noise says
             // less than the learnt velocity: it stands for frames and jumps a column (one 4.8 m
             // ahead at a grazing angle, 12 cm columns: the pose stepped 4-9 cm frame to frame).
-            if (motion_known &&
-                frustum.EdgeSpacing(x.obs->edge[e], x.obs->d) > 2.0 * LearnedFrustum::kEdgeNoise) {
-              continue;
-            }
-            sys.Add(t, along);
+            const double spacing = frustum.EdgeSpacing(x.obs->edge[e], x.obs->d);
+            if (motion_known && spacing > 2.0 * LearnedFrustum::kEdgeNoise) continue;
+            const double noise = LearnedFrustum::kEdgeNoise;
+            const double w =
+                motion_known ? noise * noise / (noise * noise + spacing * spacing) : 1.0;
+            sys.a += w * t * t.transpose();
+            sys.b += w * t * along;
             placed_ends += motion_known ? 1 : 0;
             continue;
           }
@@ -357,10 +359,10 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       // With the motion known, the ends weighed against the learnt velocity's prediction by
       // their noise: the prediction drifts by up to kDriftRate an iteration since the walls last
       // fixed the position, a mapped end is good to kEdgeNoise (the lines' unit weight stands
-      // for that). Taken alone, a pilaster face's far end, mapped 3 cm short from sightings 2-5 m
-      // off, set the position 4 cm back on the first iterations of a motion-model spell, and
-      // the end wall first seen from there was mapped as far back (loop_other_sensor, σ = 1 cm,
-      // seed 14).
+      // for that) and its samples' spacing along the wall combined. Taken alone, a pilaster face's
+      // far end, mapped 3 cm short from sightings 2-5 m off, set the position 4 cm back on the
+      // first iterations of a motion-model spell, and the end wall first seen from there was mapped
+      // as far back (loop_other_sensor, σ = 1 cm, seed 14).
       if (placed_ends > 0) {
         const double sigma = std::max(kDriftRate * static_cast<double>(predicted_for), kDriftRate);
         const double w = std::pow(LearnedFrustum::kEdgeNoise / sigma, 2);
