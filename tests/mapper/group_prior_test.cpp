@@ -406,5 +406,40 @@ TEST(GroupPrior, AGroupsPriorTakesEveryMembersLineNotOnlyTheBasiss) {
   ExpectEndWallAndLeftEndWhereTheyAre(state);
 }
 
+TEST(GroupPrior, AMemberSeenOnlySinceTheGroupWasMadeFixesADirectionTheOtherLinesLeaveOpen) {
+  // As above, but the end wall comes into view only after group 1 was made (iteration 6), from
+  // poses the walls fixed at iterations 7 and 8 (a 6 m range reaching a hallway's end wall). The
+  // group's other lines are the hallway's two sides: along x its prior would be the left side's
+  // end seen 4 cm short, while the end wall's line, seen square on, fixes it (loop_other_sensor:
+  // a group 5.5 cm short of its hallway's end wall).
+  const auto seen = SeenAlongX;
+  MapperState state = DrivingAlongX(8, 8);
+  RltPlane end(0, seen({4, -1}, {4, 1}, 0.7, 7), 0.05, 1000);
+  end.Add(seen({4, -1}, {4, 1}, 0.8, 8));
+  RltPlane left(1, seen({-1, 1}, {2.96, 1}, 0.4, 4), 0.05, 1000);
+  left.Add(seen({-1, 1}, {2.96, 1}, 0.5, 5));
+  RltPlane right(2, seen({-1, -1}, {3.5, -1}, 0.4, 4), 0.05, 1000);
+  right.Add(seen({-1, -1}, {3.5, -1}, 0.5, 5));
+  end.groups = {1};
+  left.groups = {1};
+  right.groups = {0, 1};
+  const double end_alpha = end.Latest().Alpha(), left_alpha = left.Latest().Alpha();
+  const int left_far = FarEnd(left.Latest());
+  const Placement right_line = Placed(right.Latest().Alpha(), {0, -1}, -1, Known::kLine);
+  state.planes.emplace(0, std::move(end));
+  state.planes.emplace(1, std::move(left));
+  state.planes.emplace(2, std::move(right));
+  state.groups = {Built(0, 0, {{2, right_line}}, 2)};
+  state.global = {{2, right_line}};
+  state.placed_by = {{2, 0}};
+  // Group 1's frame: the left side's far end at the origin, the end wall 1 m past it.
+  const Placement left_end = Placed(left_alpha, {0, 0}, left_far, Known::kPoint);
+  const Placement end_line = Placed(end_alpha, {1, 0}, -1, Known::kLine);
+  const Placement right_in_group = Placed(right_line.alpha, {0, -2}, -1, Known::kLine);
+  state.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_in_group}}, 1));
+  BuildGlobalMap(state, 1, MapperOptions{});
+  ExpectEndWallAndLeftEndWhereTheyAre(state);
+}
+
 }  // namespace
 }  // namespace relplane::mapper
