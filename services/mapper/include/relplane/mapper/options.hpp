@@ -61,7 +61,10 @@ struct LocalisationOptions {
 // Soft-linked groups (§V future work): least squares over the group placements at loop closure.
 struct PoseGraphOptions {
   bool enabled = true;
-  double angle_sigma = 0.005;    // rad, agreement of a shared plane's orientation in two groups
+  // rad, agreement of a shared plane's orientation in two groups. 0.005 until 2026-12-05: at
+  // that, a loop's closing solve turned a 17.5 m leg by 0.16 degrees rather than move its
+  // groups 2-3 cm along, and the next leg's walls went 6 cm across (loop_other_sensor, σ = 1 cm).
+  double angle_sigma = 0.002;
   double position_sigma = 0.01;  // m, agreement of its line and static edge, plus the spread
                                  // of the static pairings that placed it (Placement::variance)
   // m (and rad): each group's placement as chained, weighed as the chain weighs its prior
