@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -339,12 +340,15 @@ TEST(GroupPrior, AGroupMadeWhileTheMotionModelCarriedThePoseIsPlacedFromTheEndsS
 // seen square on, the hallway's left side y = 1 (plane 1), and its right side y = -1 (plane 2),
 // which group 0 mapped by its line. Seen 2.5 m along the wall 1 m beside the sensor, the left
 // side's far end (x = 3, a recess) is the last ray that met it, 4 cm short of the end
-// (x = 2.96) in both sightings. Group 1, made at iteration 6, is added by the test.
-MapperState HallwayWithAnEndSeenShort() {
+// (x = 2.96) in both sightings at iterations 4 and 5. The end wall is seen at iterations
+// `end_seen` and the one after (4 unless given). Group 1, made at iteration 6, is added by the
+// test.
+MapperState HallwayWithAnEndSeenShort(int64_t end_seen = 4) {
   const auto seen = SeenAlongX;
-  MapperState state = DrivingAlongX(5, 5);
-  RltPlane end(0, seen({4, -1}, {4, 1}, 0.4, 4), 0.05, 1000);
-  end.Add(seen({4, -1}, {4, 1}, 0.5, 5));
+  const auto at = [](int64_t k) { return 0.1 * static_cast<double>(k); };
+  MapperState state = DrivingAlongX(std::max<int64_t>(5, end_seen + 1), std::max<int64_t>(5, end_seen + 1));
+  RltPlane end(0, seen({4, -1}, {4, 1}, at(end_seen), end_seen), 0.05, 1000);
+  end.Add(seen({4, -1}, {4, 1}, at(end_seen + 1), end_seen + 1));
   RltPlane left(1, seen({-1, 1}, {2.96, 1}, 0.4, 4), 0.05, 1000);
   left.Add(seen({-1, 1}, {2.96, 1}, 0.5, 5));
   RltPlane right(2, seen({-1, -1}, {3.5, -1}, 0.4, 4), 0.05, 1000);
@@ -412,31 +416,14 @@ TEST(GroupPrior, AMemberSeenOnlySinceTheGroupWasMadeFixesADirectionTheOtherLines
   // group's other lines are the hallway's two sides: along x its prior would be the left side's
   // end seen 4 cm short, while the end wall's line, seen square on, fixes it (loop_other_sensor:
   // a group 5.5 cm short of its hallway's end wall).
-  const auto seen = SeenAlongX;
-  MapperState state = DrivingAlongX(8, 8);
-  RltPlane end(0, seen({4, -1}, {4, 1}, 0.7, 7), 0.05, 1000);
-  end.Add(seen({4, -1}, {4, 1}, 0.8, 8));
-  RltPlane left(1, seen({-1, 1}, {2.96, 1}, 0.4, 4), 0.05, 1000);
-  left.Add(seen({-1, 1}, {2.96, 1}, 0.5, 5));
-  RltPlane right(2, seen({-1, -1}, {3.5, -1}, 0.4, 4), 0.05, 1000);
-  right.Add(seen({-1, -1}, {3.5, -1}, 0.5, 5));
-  end.groups = {1};
-  left.groups = {1};
-  right.groups = {0, 1};
-  const double end_alpha = end.Latest().Alpha(), left_alpha = left.Latest().Alpha();
-  const int left_far = FarEnd(left.Latest());
-  const Placement right_line = Placed(right.Latest().Alpha(), {0, -1}, -1, Known::kLine);
-  state.planes.emplace(0, std::move(end));
-  state.planes.emplace(1, std::move(left));
-  state.planes.emplace(2, std::move(right));
-  state.groups = {Built(0, 0, {{2, right_line}}, 2)};
-  state.global = {{2, right_line}};
-  state.placed_by = {{2, 0}};
+  MapperState state = HallwayWithAnEndSeenShort(7);
+  const auto alpha = [&](int64_t id) { return state.Plane(id)->Latest().Alpha(); };
   // Group 1's frame: the left side's far end at the origin, the end wall 1 m past it.
-  const Placement left_end = Placed(left_alpha, {0, 0}, left_far, Known::kPoint);
-  const Placement end_line = Placed(end_alpha, {1, 0}, -1, Known::kLine);
-  const Placement right_in_group = Placed(right_line.alpha, {0, -2}, -1, Known::kLine);
-  state.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_in_group}}, 1));
+  const Placement left_end =
+      Placed(alpha(1), {0, 0}, FarEnd(state.Plane(1)->Latest()), Known::kPoint);
+  const Placement end_line = Placed(alpha(0), {1, 0}, -1, Known::kLine);
+  const Placement right_line = Placed(alpha(2), {0, -2}, -1, Known::kLine);
+  state.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_line}}, 1));
   BuildGlobalMap(state, 1, MapperOptions{});
   ExpectEndWallAndLeftEndWhereTheyAre(state);
 }
