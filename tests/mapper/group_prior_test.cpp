@@ -346,7 +346,8 @@ TEST(GroupPrior, AGroupMadeWhileTheMotionModelCarriedThePoseIsPlacedFromTheEndsS
 MapperState HallwayWithAnEndSeenShort(int64_t end_seen = 4) {
   const auto seen = SeenAlongX;
   const auto at = [](int64_t k) { return 0.1 * static_cast<double>(k); };
-  MapperState state = DrivingAlongX(std::max<int64_t>(5, end_seen + 1), std::max<int64_t>(5, end_seen + 1));
+  const int64_t last = std::max<int64_t>(5, end_seen + 1);
+  MapperState state = DrivingAlongX(last, last);
   RltPlane end(0, seen({4, -1}, {4, 1}, at(end_seen), end_seen), 0.05, 1000);
   end.Add(seen({4, -1}, {4, 1}, at(end_seen + 1), end_seen + 1));
   RltPlane left(1, seen({-1, 1}, {2.96, 1}, 0.4, 4), 0.05, 1000);
