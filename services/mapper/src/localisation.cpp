@@ -32,9 +32,9 @@ constexpr double kOrientationFloor = 0.001;
 struct System {
   Matrix2d a = Matrix2d::Zero();
   Vector2d b = Vector2d::Zero();
-  void Add(const Vector2d& dir, double value) {
-    a += dir * dir.transpose();
-    b += dir * value;
+  void Add(const Vector2d& dir, double value, double weight = 1.0) {
+    a += weight * dir * dir.transpose();
+    b += weight * dir * value;
   }
 };
 
@@ -320,8 +320,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
             const double noise = LearnedFrustum::kEdgeNoise;
             const double w =
                 motion_known ? noise * noise / (noise * noise + spacing * spacing) : 1.0;
-            sys.a += w * t * t.transpose();
-            sys.b += w * t * along;
+            sys.Add(t, along, w);
             placed_ends += motion_known ? 1 : 0;
             continue;
           }
@@ -366,8 +365,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       if (placed_ends > 0) {
         const double sigma = std::max(kDriftRate * static_cast<double>(predicted_for), kDriftRate);
         const double w = std::pow(LearnedFrustum::kEdgeNoise / sigma, 2);
-        sys.a += w * open * open.transpose();
-        sys.b += w * open * open.dot(previous.Translation());
+        sys.Add(open, open.dot(previous.Translation()), w);
       }
       // The platform drives forwards (as the learnt velocity takes it): along an open direction
       // across the heading the position stays where it was, whatever an end seen at another
