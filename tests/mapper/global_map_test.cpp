@@ -223,6 +223,72 @@ TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {
   EXPECT_NEAR(state.global.at(0).point.y(), 0.5, 1e-9);
 }
 
+// From the start pose, a hallway's left wall A (y = 1) seen over 6 m and, on the right
+// (y = -1), a 1.5 m piece B between two doors 5.5 to 7 m ahead, its first sighting fitted
+// 0.4 degrees off about its middle (a few of a jamb's points). Group 0's relative map has B as
+// its comparisons over their interval put it, parallel to A, known as `b_known`; the group's
+// frame is A's, at A's middle.
+struct FirstGroupWithAPieceSeenOff {
+  MapperState state;
+  double a_alpha = 0.0, b_alpha = 0.0;  // the walls' true orientations, as seen whole
+};
+
+FirstGroupWithAPieceSeenOff PieceSeenOffFromTheStart(Known b_known) {
+  FirstGroupWithAPieceSeenOff scene;
+  MapperState& state = scene.state;
+  state.first_iteration = 0;
+  state.poses[0] = {0.0, 0.0, 0.0};
+  state.fixed_poses.insert(0);
+  const auto seen = [](const Vector2d& a, const Vector2d& b) {
+    return *MakeObservation(testing::WallSeen(a, b), 0, 0.3);
+  };
+  const Vector2d a_middle(4, 1), b_middle(6.25, -1);
+  const double off = 0.4 * M_PI / 180.0;
+  const Vector2d b_along(-std::cos(off), -std::sin(off));
+  const Observation a = seen({1, 1}, {7, 1});
+  scene.a_alpha = a.Alpha();
+  scene.b_alpha = seen({7, -1}, {5.5, -1}).Alpha();
+  RltPlane wall(0, a, 0.05, 1000);
+  RltPlane piece(1, seen(b_middle - 0.75 * b_along, b_middle + 0.75 * b_along), 0.05, 1000);
+  for (RltPlane* plane : {&wall, &piece}) {
+    plane->first_seen = SeenFrom(plane->Latest(), state.poses[0]);
+    plane->groups = {0};
+  }
+  state.planes.emplace(0, std::move(wall));
+  state.planes.emplace(1, std::move(piece));
+  const Eigen::Rotation2Dd to_group(-scene.a_alpha);
+  state.groups = {Built(
+      0, 1,
+      {{0, Placed(0.0, {0, 0}, -1, Known::kLine)},
+       {1, Placed(scene.b_alpha - scene.a_alpha, to_group * (b_middle - a_middle), -1, b_known)}},
+      0)};
+  return scene;
+}
+
+TEST(GlobalMap, AShortPieceSeenOffFromTheStartPoseHardlyTurnsTheFirstGroup) {
+  // The first group is placed from its members' first sightings (§II.D). One sighting of a
+  // 1.5 m piece is not averaged over an interval: its fit's bias over its length (3 cm) weighs
+  // in, as in the comparisons. Weighed as the piece's best fit, B turned the group and every
+  // wall in it by 0.2 degrees, for the whole run (a doors loop at 1 cm: 4 cm at its far end).
+  FirstGroupWithAPieceSeenOff scene = PieceSeenOffFromTheStart(Known::kLine);
+  BuildGlobalMap(scene.state, 0, MapperOptions{});
+  EXPECT_LT(std::abs(geometry::WrapAngle(scene.state.groups[0].placement.yaw - scene.a_alpha)),
+            0.05 * M_PI / 180.0);
+}
+
+TEST(GlobalMap, AWallKnownByItsOrientationOnlyTakesItFromTheComparisons) {
+  // B known by its orientation only: its line is its sighting's, about the middle of what was
+  // seen, in the orientation the group's comparisons give it. As first seen, B lay 0.4 degrees
+  // off, and the poses localised on it over the next 2 m turned with it.
+  FirstGroupWithAPieceSeenOff scene = PieceSeenOffFromTheStart(Known::kAngle);
+  BuildGlobalMap(scene.state, 0, MapperOptions{});
+  ASSERT_TRUE(scene.state.global.count(1));
+  const Placement& placed = scene.state.global.at(1);
+  EXPECT_EQ(placed.known, Known::kLine);
+  EXPECT_LT(std::abs(geometry::WrapAngle(placed.alpha - scene.b_alpha)), 0.05 * M_PI / 180.0);
+  EXPECT_NEAR(placed.point.y(), -1.0, 0.001);
+}
+
 TEST(GlobalMap, AWallPlacedByItsLineIsAnchoredAtThePartSeen) {
   // A door jamb (x = 3, 0.1 m of it at y = 1.5) seen from the origin, its fit 5 degrees off about
   // the middle of its points. Placed by its line from that one sighting, its point is the middle
