@@ -290,7 +290,7 @@ void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
       // comparisons give it (§II.C, averaged over their intervals). As one sighting had it, a
       // hallway wall's far piece fitted 0.4 degrees off in the start pose's view (a few of a
       // jamb's points) kept that orientation, and the pose turned with it over the next 2 m (a
-      // doors loop at 1 cm: 0.35 degrees, 4 cm off at the far end of the loop). A later group's
+      // doors loop at 1 cm, seed 29: 0.35 degrees by iteration 70). A later group's
       // line fuses the sightings from fixed poses (LineWhenMade), which fix its orientation
       // better than comparisons that do not even pin its line: turned to those, an office's
       // wall went 1.7 degrees off, the next group was placed through it and a room's walls came
