@@ -32,8 +32,16 @@ struct Flags {
   int jobs = 0;
   std::string json;
   std::string frames_dir;
+  std::string planes_dir;
   bool check = false;
 };
+
+// Writes `text` to `path`: "" when done, else why not.
+std::string WriteFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  return out ? "" : "cannot write " + path;
+}
 
 // A scenario named without a path or .yaml is one of the project's (scenarios/NAME.yaml).
 std::string ResolveScenario(const std::string& name) {
@@ -93,6 +101,10 @@ int Main(int argc, char** argv) {
   parser.Add("--json", &f.json, "also write every run's metrics and the summaries to FILE");
   parser.Add("--frames", &f.frames_dir, "also write each run's poses, frame by frame, to "
              "DIR/SCENARIO-seedN.csv");
+  parser.Add("--planes", &f.planes_dir,
+             "also write each run's segmented walls against the true "
+             "ones, frame by frame, to DIR/SCENARIO-seedN-planes.csv: the fit's offset at its "
+             "centroid and at the foot of the perpendicular from the sensor");
   parser.AddFlag("--check", &f.check, "exit 1 unless every run meets the targets");
   if (auto code = parser.Parse(argc, argv)) return *code;
 
@@ -113,6 +125,7 @@ int Main(int argc, char** argv) {
         spec.overrides = base_overrides;
         if (seed > 0) spec.overrides.push_back("sim.sensor.seed=" + std::to_string(seed));
         spec.min_wall_length_m = f.min_wall_length_m;
+        spec.plane_errors = !f.planes_dir.empty();
         specs.push_back(spec);
         SweepRun run;
         run.scenario = StemOf(file);
@@ -122,10 +135,11 @@ int Main(int argc, char** argv) {
     }
     // Every run's options are read now, so a bad key or value is reported before any work.
     for (const RunSpec& spec : specs) CheckScenario(spec);
-    if (!f.frames_dir.empty()) {
+    for (const std::string& dir : {f.frames_dir, f.planes_dir}) {
+      if (dir.empty()) continue;
       std::error_code error;
-      std::filesystem::create_directories(f.frames_dir, error);
-      if (error) throw std::runtime_error(f.frames_dir + ": " + error.message());
+      std::filesystem::create_directories(dir, error);
+      if (error) throw std::runtime_error(dir + ": " + error.message());
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "relplane-accuracy: %s\n", e.what());
@@ -150,12 +164,13 @@ int Main(int argc, char** argv) {
       } catch (const std::exception& e) {
         errors[i] = e.what();
       }
+      const std::string stem = runs[i].scenario + "-seed" + std::to_string(runs[i].seed);
       if (errors[i].empty() && !f.frames_dir.empty()) {
-        const std::string path = f.frames_dir + "/" + runs[i].scenario + "-seed" +
-                                 std::to_string(runs[i].seed) + ".csv";
-        std::ofstream out(path);
-        out << FramesCsv(runs[i].result);
-        if (!out) errors[i] = "cannot write " + path;
+        errors[i] = WriteFile(f.frames_dir + "/" + stem + ".csv", FramesCsv(runs[i].result));
+      }
+      if (errors[i].empty() && !f.planes_dir.empty()) {
+        errors[i] = WriteFile(f.planes_dir + "/" + stem + "-planes.csv",
+                              PlaneErrorsCsv(runs[i].result.plane_errors));
       }
       runs[i].seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -95,6 +95,7 @@ RunResult RunScenario(const RunSpec& spec) {
   mapper::Mapper mapper(sections.mapper);
   RunResult r;
   std::vector<eval::PoseSample> estimate, truth;
+  const std::vector<sim::TruePlane> true_planes = simulation.TruePlanes();
   for (int64_t k = 0; k < simulation.NumIterations(); ++k) {
     ++r.frames;
     const Eigen::Isometry3d t = simulation.SensorPose(k);
@@ -114,7 +115,13 @@ RunResult RunScenario(const RunSpec& spec) {
       ++r.rejected_frames;
       continue;
     }
-    const plane_set_t set = segmenter::ToPlaneSet(segmenter.Segment(cloud), k, k);
+    const segmenter::Result segmented = segmenter.Segment(cloud);
+    if (spec.plane_errors) {
+      for (const PlaneError& e : PlaneErrors(k, t, segmented.planes, true_planes)) {
+        r.plane_errors.push_back(e);
+      }
+    }
+    const plane_set_t set = segmenter::ToPlaneSet(segmented, k, k);
     std::vector<mapper::PlaneInput> planes;
     if (!mapper::FromPlaneSet(set, &planes, &reason)) {
       ++r.rejected_frames;
@@ -134,7 +141,7 @@ RunResult RunScenario(const RunSpec& spec) {
   }
 
   eval::MapSnapshot world, map;
-  for (const sim::TruePlane& p : simulation.TruePlanes()) {
+  for (const sim::TruePlane& p : true_planes) {
     world.planes.push_back(
         Record(p.id, p.normal, p.d, p.centroid, {p.corners.begin(), p.corners.end()}));
   }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "relplane/accuracy/plane_errors.hpp"
 #include "relplane/eval/map_metrics.hpp"
 #include "relplane/eval/trajectory_metrics.hpp"
 
@@ -20,6 +21,8 @@ struct RunSpec {
   std::vector<std::string> overrides;
   // True walls shorter than this are not scored (eval's VisibilityOptions::min_wall_length_m).
   double min_wall_length_m = 0.3;
+  // Also keep each frame's segmented walls against the truth (RunResult::plane_errors).
+  bool plane_errors = false;
 };
 
 // One frame's pose against the truth, for tracing where a run goes wrong.
@@ -42,6 +45,7 @@ struct RunResult {
   int64_t motion_model_frames = 0;  // poses with status MOTION_MODEL (§II.E)
   int64_t rejected_frames = 0;      // a conversion refused the message: counted, not mapped
   std::vector<FramePose> poses;     // every frame's
+  std::vector<PlaneError> plane_errors;  // with RunSpec::plane_errors: every frame's walls
   // Where each true wall of map.walls stands, seen from above (same order): which wall a run's
   // worst error is on.
   std::vector<geometry::Segment2> wall_segments;
