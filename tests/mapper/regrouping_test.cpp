@@ -142,6 +142,51 @@ TEST(RelativeMap, AWallsOrientationComesFromAllItsComparisonsNotOneChainThroughA
   EXPECT_NEAR(geometry::WrapAngle(relative - (world(b) - world(a))), 0.0, 1.0 * M_PI / 180.0);
 }
 
+// §II.D: a member two static pairings place is put where all of them say, weighed by their
+// information, not where the strongest alone says. C's ends are seen 1 cm along its line one
+// way while A is in view with it and 1 cm the other way while B is (the ends of a face seen from
+// another side, as a wall's neighbours change); D is in view throughout. The pairings A-C and
+// B-C are equally strong and 2 cm apart, so a chain through either puts C 1 cm off; their mean,
+// and D-C's, is where C is.
+TEST(RelativeMap, AMemberIsPlacedWhereAllItsStaticPairingsSayNotOneChain) {
+  MapperOptions options;
+  MapperState state;
+  const int64_t a = 0, b = 1, c = 2, d = 3;
+  const Vector2d kC0{5.0, -1.5}, kC1{5.8, -0.7};
+  const Vector2d along = (kC1 - kC0).normalized();
+  for (int64_t k = 0; k < 150; ++k) {
+    const Vector2d shift = (k < 75 ? 0.01 : -0.01) * along;
+    if (k < 75) See(state, a, k, kB0, kB1);
+    if (k >= 75) See(state, b, k, kC0 - Vector2d(0, 0.5), kC1 - Vector2d(0, 0.5));
+    See(state, c, k, kC0 + shift, kC1 + shift);
+    See(state, d, k, kA0, kA1);
+  }
+  AddGroup(state, {a, b, c, d}, 0);
+  CompareMembers(state, state.groups[0], 149, options);
+  const RelativeMap map = BuildRelativeMap(state.groups[0], state);
+  ASSERT_EQ(map.members.size(), 4u);
+  for (int64_t id : {a, b, c, d}) ASSERT_EQ(map.members.at(id).known, Known::kPoint) << id;
+  const Placement& pc = map.members.at(c);
+  const Placement& pd = map.members.at(d);
+  // Where one pairing alone puts C's reference edge, from A and from B as placed (by all the
+  // pairings, so half the 2 cm is left between them): the test shows nothing if they agree.
+  const auto through = [&](int64_t from) {
+    const Placement& p = map.members.at(from);
+    Vector2d mean;
+    EXPECT_TRUE(state.FindComparison(from, c)->From(from).Pair(p.ref, pc.ref, &mean));
+    return Vector2d(p.point + Eigen::Rotation2Dd(p.alpha) * mean);
+  };
+  EXPECT_GT((through(a) - through(b)).norm(), 0.008);
+  // C's edge from D's, against the world's (C's last sighting is 1 cm back along its line).
+  const auto world = [&](int64_t id) {
+    const RltPlane& p = state.planes.at(id);
+    return SeenFrom(p.Latest(), SensorAt(p.LastSeen()));
+  };
+  const Vector2d truth = world(c).edge[pc.ref] + 0.01 * along - world(d).edge[pd.ref];
+  const Vector2d placed = Eigen::Rotation2Dd(world(d).alpha - pd.alpha) * (pc.point - pd.point);
+  EXPECT_NEAR((placed - truth).norm(), 0.0, 0.003);
+}
+
 // §II.C: a pairing's spread over its interval says how well it places the member. A's ends are
 // seen 2 cm either side of where they are, in turn (the ends of a wall at a grazing angle, where
 // the sensor's rays last hit it), for 60 iterations; B and C are seen exactly, for 150. The
