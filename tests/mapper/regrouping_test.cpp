@@ -144,21 +144,22 @@ TEST(RelativeMap, AWallsOrientationComesFromAllItsComparisonsNotOneChainThroughA
 
 // §II.D: a member two static pairings place is put where all of them say, weighed by their
 // information, not where the strongest alone says. C's ends are seen 1 cm along its line one
-// way while A is in view with it and 1 cm the other way while B is (the ends of a face seen from
-// another side, as a wall's neighbours change); D is in view throughout. The pairings A-C and
+// way while A (on the left) is in view with it and 1 cm the other way while B (parallel to C,
+// 0.35 m behind it) is: the ends of a face seen from another side, as its neighbours change. D
+// (across the way) is in view throughout. The pairings A-C and
 // B-C are equally strong and 2 cm apart, so a chain through either puts C 1 cm off; their mean,
 // and D-C's, is where C is.
 TEST(RelativeMap, AMemberIsPlacedWhereAllItsStaticPairingsSayNotOneChain) {
   MapperOptions options;
   MapperState state;
   const int64_t a = 0, b = 1, c = 2, d = 3;
-  const Vector2d kC0{5.0, -1.5}, kC1{5.8, -0.7};
-  const Vector2d along = (kC1 - kC0).normalized();
+  const Vector2d c0{5.0, -1.5}, c1{5.8, -0.7};  // C, at 45 degrees
+  const Vector2d along = (c1 - c0).normalized();
   for (int64_t k = 0; k < 150; ++k) {
     const Vector2d shift = (k < 75 ? 0.01 : -0.01) * along;
     if (k < 75) See(state, a, k, kB0, kB1);
-    if (k >= 75) See(state, b, k, kC0 - Vector2d(0, 0.5), kC1 - Vector2d(0, 0.5));
-    See(state, c, k, kC0 + shift, kC1 + shift);
+    if (k >= 75) See(state, b, k, c0 - Vector2d(0, 0.5), c1 - Vector2d(0, 0.5));
+    See(state, c, k, c0 + shift, c1 + shift);
     See(state, d, k, kA0, kA1);
   }
   AddGroup(state, {a, b, c, d}, 0);
