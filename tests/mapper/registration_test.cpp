@@ -181,5 +181,34 @@ TEST(Registration, APieceOfAWallAnotherPieceRegisteredToDoesNotTakeThePlaneBehin
   EXPECT_EQ(RegisterObservations(recess_seen, state, options)[1], 2);
 }
 
+TEST(Registration, ASightingSomeIterationsOldIsComparedFromWhereTheSensorIsNow) {
+  // Turning on the spot at a corner, the sensor saw a pilaster's face 4 m away (0.5 m long)
+  // four iterations ago and has turned 0.12 rad since. Now it sees the wall 0.2 m behind the
+  // face, going on beside it. Compared untransformed, the turn shifts the face 0.48 m along the
+  // wall, onto the wall behind, and it passes every test: the wall's sightings went to the
+  // face's rltplane, mapped 0.3 m off (loop_other_sensor at sigma = 1 cm, seed 21). Moved from
+  // the pose it was seen from to the pose now, the face lies beside that wall, not on it.
+  MapperState state;
+  state.planes.emplace(
+      1, RltPlane(1, *MakeObservation(Wall({4.0, 0.0}, {4.0, 0.5}), 6, 0.3), 0.05, 100));
+  state.recent = {1};
+  state.poses[6] = geometry::Pose2{0.0, 0.0, 0.0};
+  const geometry::Pose2 now{0.0, 0.0, 0.12};
+  const geometry::Pose2 to_sensor = now.Inverse();
+  const auto seen_now = [&](Vector2d a, Vector2d b, int64_t k) {
+    return std::vector<Observation>{*MakeObservation(Wall(to_sensor * a, to_sensor * b), k, 0.3)};
+  };
+  const std::vector<Observation> behind = seen_now({4.2, 0.45}, {4.2, 1.5}, 10);
+  RegistrationOptions options;
+  ASSERT_GE(MatchScore(state.planes.at(1).Latest(), behind[0], options), 0.0);
+  EXPECT_EQ(RegisterObservations(behind, state, options)[0], 1);  // untransformed
+  EXPECT_EQ(RegisterObservations(behind, state, options, &now)[0], -1);
+  // The face itself, seen again once the turn has ended, still registers.
+  state.planes.at(1).Add(*MakeObservation(
+      Wall(to_sensor * Vector2d(4.0, 0.0), to_sensor * Vector2d(4.0, 0.5)), 11, 0.3));
+  state.poses[11] = now;
+  EXPECT_EQ(RegisterObservations(seen_now({4.0, 0.0}, {4.0, 0.5}, 12), state, options, &now)[0], 1);
+}
+
 }  // namespace
 }  // namespace relplane::mapper

@@ -224,7 +224,19 @@ void Mapper::MakePoseTie(const PoseEstimate& estimate) {
 }
 
 std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation>& observations) {
-  std::vector<int64_t> match = RegisterObservations(observations, state_, options_.registration);
+  // §II.A compares each plane with a rltplane's latest sighting untransformed, which holds from
+  // one iteration to the next but not over a few while turning; a match must also hold from
+  // the pose now, as far as it is known: the last pose, turned on by the last iteration's turn
+  // while turning on the spot (at the corners' 0.8 rad/s a wall 4 m away moves 0.1 m along
+  // itself per iteration). See RegisterObservations.
+  geometry::Pose2 now = pose_;
+  const auto last = state_.poses.find(previous_iteration_ - 1);
+  if (previous_iteration_ == iteration - 1 && last != state_.poses.end() &&
+      Turning(last->second, pose_, 1)) {
+    now.yaw = pose_.yaw + geometry::WrapAngle(pose_.yaw - last->second.yaw);
+  }
+  std::vector<int64_t> match =
+      RegisterObservations(observations, state_, options_.registration, &now);
   // §II.A end: unmatched planes are transformed with the current position (from the planes that
   // did match) and compared to the global map before becoming new rltplanes.
   if (std::find(match.begin(), match.end(), -1) != match.end() && !state_.global.empty()) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <tuple>
 
 namespace relplane::mapper {
@@ -113,17 +114,20 @@ void DropRepeatedSightings(std::vector<Observation>* observations,
 }
 
 double MatchScore(const Observation& latest, const Observation& obs,
-                  const RegistrationOptions& options) {
+                  const RegistrationOptions& options, const geometry::Pose2& motion) {
   // Last seen test (§II.A: "only use planes seen in the last few iterations").
   const int64_t gap = obs.iteration - latest.iteration;
   if (gap <= 0 || gap > options.last_seen_window) return -1.0;
+  // The latest sighting's line and edges in the frame of `obs`.
+  const Eigen::Vector2d normal = motion.Rotation() * latest.normal;
+  const Eigen::Vector2d edge[2] = {motion * latest.edge[0], motion * latest.edge[1]};
   // Plane equation test.
-  const double angle = std::acos(std::clamp(latest.normal.dot(obs.normal), -1.0, 1.0));
-  const double dd = std::abs(latest.d - obs.d);
+  const double angle = std::acos(std::clamp(normal.dot(obs.normal), -1.0, 1.0));
+  const double dd = std::abs(-normal.dot(edge[0]) - obs.d);
   if (angle > options.max_angle || dd > options.max_distance) return -1.0;
   // Bounding box test, along the wall and in height: adjacent planes must not match.
   const Eigen::Vector2d t = obs.Direction();
-  double l0 = t.dot(latest.edge[0]), l1 = t.dot(latest.edge[1]);
+  double l0 = t.dot(edge[0]), l1 = t.dot(edge[1]);
   if (l0 > l1) std::swap(l0, l1);
   const double o_along = Overlap(l0, l1, t.dot(obs.edge[0]), t.dot(obs.edge[1]));
   const double o_height = Overlap(latest.z_min, latest.z_max, obs.z_min, obs.z_max);
@@ -134,15 +138,23 @@ double MatchScore(const Observation& latest, const Observation& obs,
 
 std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observations,
                                           const MapperState& state,
-                                          const RegistrationOptions& options) {
+                                          const RegistrationOptions& options,
+                                          const geometry::Pose2* now) {
   std::vector<std::tuple<double, size_t, int64_t>> candidates;  // score, observation, rltplane
   for (int64_t id : state.recent) {
     const auto it = state.planes.find(id);
     if (it == state.planes.end()) continue;
     const Observation& latest = it->second.Latest();
+    std::optional<geometry::Pose2> motion;  // from the frame `latest` was seen in to now
+    if (now != nullptr) {
+      const auto then = state.poses.find(latest.iteration);
+      if (then != state.poses.end()) motion = now->Inverse() * then->second;
+    }
     for (size_t k = 0; k < observations.size(); ++k) {
       const double score = MatchScore(latest, observations[k], options);
-      if (score >= 0.0) candidates.emplace_back(score, k, id);
+      if (score < 0.0) continue;
+      if (motion && MatchScore(latest, observations[k], options, *motion) < 0.0) continue;
+      candidates.emplace_back(score, k, id);
     }
   }
   // The best score wins; ties broken by observation index then id, for determinism.
