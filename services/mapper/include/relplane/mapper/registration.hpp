@@ -45,8 +45,8 @@ void DropRepeatedSightings(
 // 4 m away 0.5 m along the wall, onto the wall 0.3 m behind it, which registered to the face's
 // rltplane (loop_other_sensor at σ = 1 cm, seed 21: mapped 0.3 m off and twice). The moved
 // test only refuses: a plane it alone matches is left to backtracking (§II.A end) or a new
-// rltplane, as untransformed. Letting it match as well took a door's jambs seen before a turn
-// on into the next room and moved the noise-free office's map 2 cm.
+// rltplane, as untransformed. Letting it match as well registered a door's jambs seen before
+// a turn on into the next room, and the noise-free office's map moved 2 cm.
 std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observations,
                                           const MapperState& state,
                                           const RegistrationOptions& options,
