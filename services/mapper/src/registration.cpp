@@ -120,10 +120,11 @@ double MatchScore(const Observation& latest, const Observation& obs,
   if (gap <= 0 || gap > options.last_seen_window) return -1.0;
   // The latest sighting's line and edges in the frame of `obs`.
   const Eigen::Vector2d normal = motion.Rotation() * latest.normal;
+  const double d = latest.d - normal.dot(motion.Translation());
   const Eigen::Vector2d edge[2] = {motion * latest.edge[0], motion * latest.edge[1]};
   // Plane equation test.
   const double angle = std::acos(std::clamp(normal.dot(obs.normal), -1.0, 1.0));
-  const double dd = std::abs(-normal.dot(edge[0]) - obs.d);
+  const double dd = std::abs(d - obs.d);
   if (angle > options.max_angle || dd > options.max_distance) return -1.0;
   // Bounding box test, along the wall and in height: adjacent planes must not match.
   const Eigen::Vector2d t = obs.Direction();
