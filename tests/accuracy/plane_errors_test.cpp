@@ -54,6 +54,7 @@ TEST(PlaneErrors, AFitTurnedAboutItsCentroidIsOffAtTheFootByTheLeverTimesTheTurn
   EXPECT_EQ(errors[0].points, 500);
   EXPECT_NEAR(errors[0].centroid_error_m, 0.0, 1e-5);
   EXPECT_NEAR(errors[0].foot_error_m, 1.8 * std::tan(turn), 1e-5);
+  EXPECT_NEAR(errors[0].normal_error_deg, turn * 180.0 / M_PI, 1e-4);
 }
 
 // A fit 1 cm nearer the sensor than the face is 1 cm off, positive, at both places; its normal
@@ -74,7 +75,7 @@ TEST(PlaneErrors, DetectionsOnNoTrueWallAreLeftOut) {
       Seen(Vector3d(0, 0, 1), Vector3d(3, -1.8, 0.0)),     // the floor
       Seen(Vector3d(-1, 0, 0), Vector3d(2.7, -1.8, 1.2)),  // 0.3 m off its plane
       Seen(Vector3d(-1, 0, 0), Vector3d(3, -1.2, 1.2)),    // 0.4 m past its end
-      Seen(Vector3d(-std::cos(0.1), -std::sin(0.1), 0), Vector3d(3, -1.8, 1.2)),  // 5.7 deg
+      Seen(Vector3d(-std::cos(0.2), -std::sin(0.2), 0), Vector3d(3, -1.8, 1.2)),  // 11.5 deg
   };
   EXPECT_TRUE(PlaneErrors(0, Sensor(), detections, {Jamb()}).empty());
 }
@@ -88,9 +89,11 @@ TEST(PlaneErrors, TheCsvHasAHeaderAndARowPerError) {
   e.points = 321;
   e.centroid_error_m = 0.0001;
   e.foot_error_m = -0.0123;
+  e.normal_error_deg = 1.25;
   EXPECT_EQ(PlaneErrorsCsv({e}),
-            "seq,true_id,true_length_m,range_m,points,centroid_error_m,foot_error_m\n"
-            "12,3,0.400,2.500,321,0.00010,-0.01230\n");
+            "seq,true_id,true_length_m,range_m,points,centroid_error_m,foot_error_m,"
+            "normal_error_deg\n"
+            "12,3,0.400,2.500,321,0.00010,-0.01230,1.2500\n");
 }
 
 }  // namespace

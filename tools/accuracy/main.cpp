@@ -101,10 +101,11 @@ int Main(int argc, char** argv) {
   parser.Add("--json", &f.json, "also write every run's metrics and the summaries to FILE");
   parser.Add("--frames", &f.frames_dir, "also write each run's poses, frame by frame, to "
              "DIR/SCENARIO-seedN.csv");
-  parser.Add("--planes", &f.planes_dir,
-             "also write each run's segmented walls against the true ones, frame by frame, to "
-             "DIR/SCENARIO-seedN-planes.csv: the fit's offset at its centroid and at the foot of "
-             "the perpendicular from the sensor");
+  parser.Add(
+      "--planes", &f.planes_dir,
+      "also write each run's segmented walls against the true ones, frame by frame, to "
+      "DIR/SCENARIO-seedN-planes.csv: the fit's offset at its centroid and at the foot of "
+      "the perpendicular from the sensor, and the angle between its normal and the true one");
   parser.AddFlag("--check", &f.check, "exit 1 unless every run meets the targets");
   if (auto code = parser.Parse(argc, argv)) return *code;
 

@@ -25,17 +25,18 @@ struct PlaneError {
   // detection's centroid, and at the foot of the perpendicular from the sensor to the true wall.
   double centroid_error_m = 0.0;
   double foot_error_m = 0.0;
+  double normal_error_deg = 0.0;  // between the fitted normal and the true one
 };
 
 // The detections (sensor frame) of one frame taken at `sensor` (sensor to world) that lie on a
-// true wall: vertical, facing within 3 degrees of it, the centroid within 0.12 m of its plane and
+// true wall: vertical, facing within 10 degrees of it, the centroid within 0.12 m of its plane and
 // within 0.1 m of its ends along it; the nearest such wall when there are several.
 std::vector<PlaneError> PlaneErrors(int64_t seq, const Eigen::Isometry3d& sensor,
                                     const std::vector<segmenter::DetectedPlane>& detections,
                                     const std::vector<sim::TruePlane>& walls);
 
 // One row per error, with a header: seq,true_id,true_length_m,range_m,points,centroid_error_m,
-// foot_error_m.
+// foot_error_m,normal_error_deg.
 std::string PlaneErrorsCsv(const std::vector<PlaneError>& errors);
 
 }  // namespace relplane::accuracy
