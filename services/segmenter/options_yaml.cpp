@@ -58,6 +58,7 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   ReadNonNegative(r, "describe_points_max", &o.describe_points_max);
   ReadPositive(r, "vertical_max_nz", &o.vertical_max_nz);
   r.Read("ray_noise_fit", &o.ray_noise_fit);
+  r.Read("dominant_line_fit", &o.dominant_line_fit);
   r.Read("wall_end_estimate", &o.wall_end_estimate);
   r.Read("drop_pieceless_planes", &o.drop_pieceless_planes);
   r.Read("seed", &o.seed);

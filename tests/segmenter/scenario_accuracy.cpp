@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "options_yaml.hpp"  // services/sim: the scenario's `sim` section
 #include "relplane/segmenter/segmenter.hpp"
@@ -14,6 +15,10 @@ constexpr int kMinPoints = 300;
 constexpr double kMaxAngleDeg = 5.0;
 constexpr double kMaxOffset = 0.1;
 constexpr double kMargin = 0.05;  // overlaps must be deeper than this
+// WallSightingErrorsDeg: a detection's centroid this close to the wall's plane, its normal within
+// this angle of the wall's, is a sighting of it.
+constexpr double kMaxCentroidOffset = 0.05;
+constexpr double kMaxWallAngleDeg = 20.0;
 
 double Median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -64,6 +69,13 @@ bool Match(const DetectedPlane& p, const sim::TruePlane& t, const Eigen::Isometr
   return *angle < kMaxAngleDeg && *offset < kMaxOffset && Overlaps(t, extent);
 }
 
+Cloud CloudOf(const sim::Scan& scan) {
+  Cloud cloud;
+  cloud.Reserve(scan.points.size());
+  for (const auto& p : scan.points) cloud.Add(p);
+  return cloud;
+}
+
 }  // namespace
 
 ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_sigma, int step) {
@@ -77,9 +89,7 @@ ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_
   for (int64_t k = 0; k < simulation.NumIterations(); k += step) {
     const sim::Scan scan = simulation.Frame(k);
     const Eigen::Isometry3d pose = simulation.SensorPose(k);
-    Cloud cloud;
-    cloud.Reserve(scan.points.size());
-    for (const auto& p : scan.points) cloud.Add(p);
+    const Cloud cloud = CloudOf(scan);
     const Result result = segmenter.Segment(cloud);
     ++acc.frames;
     acc.detected += static_cast<int>(result.planes.size());
@@ -126,9 +136,7 @@ int FramesWithAWallTwice(const std::string& scenario_file, double noise_sigma, u
   int frames = 0;
   for (int64_t k = first; k <= last && k < simulation.NumIterations(); ++k) {
     const sim::Scan scan = simulation.Frame(k);
-    Cloud cloud;
-    cloud.Reserve(scan.points.size());
-    for (const auto& p : scan.points) cloud.Add(p);
+    const Cloud cloud = CloudOf(scan);
     std::vector<DetectedPlane> walls;
     for (const DetectedPlane& p : segmenter.Segment(cloud).planes) {
       if (std::fabs(p.normal.z()) < 0.1f) walls.push_back(p);
@@ -143,6 +151,58 @@ int FramesWithAWallTwice(const std::string& scenario_file, double noise_sigma, u
     frames += twice;
   }
   return frames;
+}
+
+std::vector<WallSighting> WallSightings(const std::string& scenario_file, double noise_sigma,
+                                        uint32_t seed, int64_t first, int64_t last,
+                                        const Options& options, const Eigen::Vector2d& centroid) {
+  sim::ServiceOptions sim_options = sim::LoadServiceOptions(scenario_file);
+  sim_options.sim.sensor.noise_sigma = noise_sigma;
+  sim_options.sim.sensor.seed = seed;
+  sim::Simulation simulation(sim_options.sim);
+  const std::vector<sim::TruePlane> truth = simulation.TruePlanes();
+  const sim::TruePlane* wall = nullptr;
+  for (const sim::TruePlane& t : truth) {
+    if ((t.centroid.head<2>() - centroid).norm() < 0.05) wall = &t;
+  }
+  std::vector<WallSighting> sightings;
+  if (wall == nullptr) return sightings;
+  Segmenter segmenter(options);
+  for (int64_t k = 0; k <= last && k < simulation.NumIterations(); ++k) {
+    const sim::Scan scan = simulation.Frame(k);
+    const Eigen::Isometry3d pose = simulation.SensorPose(k);
+    const Cloud cloud = CloudOf(scan);
+    const Result result = segmenter.Segment(cloud);
+    if (k < first) continue;
+    const auto index = static_cast<int>(wall - truth.data());
+    if (std::count(scan.rects.begin(), scan.rects.end(), index) < kMinPoints / 2) continue;
+    // The detection with its centroid on the wall: a leaning fit still passes through the
+    // wall's samples, but its plane may pass the sensor 0.1 m or more off the wall's (Match).
+    WallSighting sighting{std::numeric_limits<double>::infinity(), 0.0};
+    for (const DetectedPlane& p : result.planes) {
+      const Eigen::Vector3d n = pose.rotation() * p.normal.cast<double>();
+      const Eigen::Vector3d c = pose * p.centroid.cast<double>();
+      std::vector<Eigen::Vector3d> extent;
+      for (const auto& v : p.vertices) extent.push_back(pose * v.cast<double>());
+      if (std::abs(wall->normal.dot(c) + wall->d) > kMaxCentroidOffset ||
+          std::abs(n.dot(wall->normal)) < std::cos(kMaxWallAngleDeg * M_PI / 180.0) ||
+          !Overlaps(*wall, extent)) {
+        continue;
+      }
+      sighting.angle_deg =
+          std::atan2(wall->normal.cross(n).norm(), std::abs(wall->normal.dot(n))) * 180.0 / M_PI;
+      const Eigen::Vector3d along = (wall->corners[1] - wall->corners[0]).normalized();
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const auto& v : extent) {
+        lo = std::min(lo, along.dot(v));
+        hi = std::max(hi, along.dot(v));
+      }
+      sighting.length_m = hi - lo;
+      break;
+    }
+    sightings.push_back(sighting);
+  }
+  return sightings;
 }
 
 }  // namespace relplane::segmenter::testing

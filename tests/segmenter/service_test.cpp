@@ -36,17 +36,19 @@ TEST(ServiceOptions, ReadsItsSectionAndRefusesUnknownOrBadKeys) {
   EXPECT_THROW(FromYaml("segmenter:\n  cell_size: -1\n"), config::ConfigError);
   EXPECT_THROW(FromYaml("segmenter:\n  sigma_min: 0.05\n  sigma_max: 0.01\n"), config::ConfigError);
   EXPECT_THROW(FromYaml("segmenter:\n  min_points: many\n"), config::ConfigError);
-  // The wall-end and ray-noise options (on by default) are turned off from the scenario or
-  // with --set.
+  // The wall-end, ray-noise and line-fit options (on by default) are turned off from the
+  // scenario or with --set.
   const ServiceOptions plain = FromYaml(
       "segmenter:\n  wall_end_estimate: false\n  drop_pieceless_planes: false\n"
-      "  ray_noise_fit: false\n");
+      "  ray_noise_fit: false\n  dominant_line_fit: false\n");
   EXPECT_TRUE(Options{}.wall_end_estimate);
   EXPECT_TRUE(Options{}.drop_pieceless_planes);
   EXPECT_TRUE(Options{}.ray_noise_fit);
+  EXPECT_TRUE(Options{}.dominant_line_fit);
   EXPECT_FALSE(plain.segmenter.wall_end_estimate);
   EXPECT_FALSE(plain.segmenter.drop_pieceless_planes);
   EXPECT_FALSE(plain.segmenter.ray_noise_fit);
+  EXPECT_FALSE(plain.segmenter.dominant_line_fit);
   EXPECT_THROW(FromYaml("segmenter:\n  wall_end_estimate: sometimes\n"), config::ConfigError);
 }
 

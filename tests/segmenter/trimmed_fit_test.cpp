@@ -4,42 +4,17 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <random>
 #include <vector>
 
+#include "plane_fit_testing.hpp"
+
 namespace relplane::segmenter {
 namespace {
 
-constexpr double kDeg = 180.0 / M_PI;
-
-// The plain least-squares fit of every point, as a piece's first fit is.
-PlaneFit LeastSquares(const std::vector<Eigen::Vector3f>& points) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : points) mean += p.cast<double>();
-  mean /= static_cast<double>(points.size());
-  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-  for (const auto& p : points) {
-    const Eigen::Vector3d q = p.cast<double>() - mean;
-    scatter += q * q.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
-  PlaneFit fit;
-  fit.normal = eig.eigenvectors().col(0);
-  if (fit.normal.y() > 0.0) fit.normal = -fit.normal;  // towards -y, as the true normal
-  fit.centroid = mean;
-  fit.rms = std::sqrt(eig.eigenvalues()(0) / points.size());
-  fit.scatter = scatter;
-  fit.count = static_cast<int>(points.size());
-  return fit;
-}
-
-// Angle between a fit's normal and the true normal -y, degrees.
-double ErrorDeg(const PlaneFit& fit) {
-  const Eigen::Vector3d truth(0, -1, 0);
-  return std::atan2(truth.cross(fit.normal).norm(), truth.dot(fit.normal)) * kDeg;
-}
+using testing::ErrorDeg;
+using testing::LeastSquares;
 
 // A 0.4 m face in the plane y = 0 (x from 0 to 0.4, z from 0 to 2), its samples spread
 // `sigma` along its normal; with `corner_points`, samples of a crossing face at x = 0 running

@@ -7,8 +7,10 @@
 
 #include <cmath>
 
+#include "options_yaml.hpp"  // services/sim: the scenario's `sim` section
 #include "relplane/pcd/pcd_reader.hpp"
 #include "relplane/segmenter/segmenter.hpp"
+#include "relplane/sim/simulation.hpp"
 #include "synthetic_scene.hpp"
 
 namespace {
@@ -140,6 +142,35 @@ void BM_Kinect640x480Cold(benchmark::State& state) {
   Run(state, frames, KinectOptions(), true);
 }
 
+// loop_other_sensor at σ = 1 cm (200 x 150, 70 degrees), noise seed 41, frames 40-80: a
+// pilaster 4-3 m ahead whose front is seen at a grazing angle, a third of whose frames lean
+// between the front and its side (options.dominant_line_fit: the line fit, then the frame
+// assigned and described again). With the option off: what it costs.
+std::vector<Cloud> PilasterFrames() {
+  relplane::sim::ServiceOptions options = relplane::sim::LoadServiceOptions(
+      std::string(RELPLANE_SOURCE_DIR) + "/scenarios/loop_other_sensor.yaml");
+  options.sim.sensor.noise_sigma = 0.01;
+  options.sim.sensor.seed = 41;
+  relplane::sim::Simulation simulation(options.sim);
+  std::vector<Cloud> frames;
+  for (int64_t k = 40; k <= 80; ++k) {
+    Cloud c;
+    for (const auto& p : simulation.Frame(k).points) c.Add(p);
+    frames.push_back(std::move(c));
+  }
+  return frames;
+}
+void BM_Pilaster200x150Path(benchmark::State& state) {
+  static const auto frames = PilasterFrames();
+  Run(state, frames, Options{}, false);
+}
+void BM_Pilaster200x150PathNoLineFit(benchmark::State& state) {
+  static const auto frames = PilasterFrames();
+  Options o;
+  o.dominant_line_fit = false;
+  Run(state, frames, o, false);
+}
+
 #define SEGMENTER_BENCHMARK(fn) \
   BENCHMARK(fn)->Unit(benchmark::kMillisecond)->Repetitions(9)->ReportAggregatesOnly(true)
 SEGMENTER_BENCHMARK(BM_Synthetic160x120Stream);
@@ -153,6 +184,8 @@ SEGMENTER_BENCHMARK(BM_Organized640x480StreamWallEnds);
 SEGMENTER_BENCHMARK(BM_Unorganized320x240Stream);
 SEGMENTER_BENCHMARK(BM_Kinect640x480Stream);
 SEGMENTER_BENCHMARK(BM_Kinect640x480Cold);
+SEGMENTER_BENCHMARK(BM_Pilaster200x150Path);
+SEGMENTER_BENCHMARK(BM_Pilaster200x150PathNoLineFit);
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "piece_grid.hpp"
+#include "relplane/segmenter/dominant_line.hpp"
 #include "relplane/segmenter/hull.hpp"
 #include "relplane/segmenter/merge_pieces.hpp"
 #include "relplane/segmenter/spacing.hpp"
@@ -46,6 +47,7 @@ struct Piece {
   Eigen::Vector3f u, v;
   float a_min = kInf, a_max = -kInf, b_min = kInf, b_max = -kInf;
   EndBuffer lo_end, hi_end;  // a vertical piece's points furthest out along u each way
+  bool line_refit = false;   // its fit was the line most of its points lie on (DominantLineFit)
 };
 
 // Sets `out`'s plane through `point` with `normal` (unit), turned towards the sensor at the
@@ -284,10 +286,50 @@ void EstimateWallEnds(float ray_step, float share, float max_spacing, float rang
   }
 }
 
+// A piece whose RMS is over this many times the noise expected along its normal leans between
+// two surfaces (DominantLineFit) ... At 2 the mapper's seeded runs did a little worse (425 of
+// 432 against 428, README.md): pieces 2-3 times over their noise are mostly small and barely
+// turned by the fit.
+constexpr double kLeaningRms = 3.0;
+// ... and takes the line most of its points lie on if that line holds at least this share of them.
+constexpr double kMinLineShare = 0.5;
+// Pieces with fewer points within their trim do not vote on the sensor's noise.
+constexpr int kMinNoisePoints = 50;
+
+// Mean over the points (relative to `origin`, in the sensor frame) of (n.d)^2, d the unit ray to
+// the point: the share of a ray's noise that lands along the normal, squared.
+double MeanSquaredIncidence(const Eigen::Vector3f* points, size_t num_points,
+                            const Eigen::Vector3f& origin, const Eigen::Vector3d& normal) {
+  if (num_points == 0) return 0.0;
+  const Eigen::Vector3f n = normal.cast<float>();
+  double sum = 0.0;
+  for (size_t i = 0; i < num_points; ++i) {
+    const Eigen::Vector3f p = points[i] + origin;
+    const float r2 = p.squaredNorm();
+    if (r2 > 0.0f) sum += static_cast<double>(n.dot(p) * n.dot(p) / r2);
+  }
+  return sum / static_cast<double>(num_points);
+}
+
+// The noise variance along a ray that grows with range (Options::range_noise), at `point`.
+double RangeVariance(const Options& options, const Eigen::Vector3d& point) {
+  const double g = static_cast<double>(options.range_noise) * point.squaredNorm();
+  return g * g;
+}
+
+// The lower median (0 when empty): with two pieces, one leaning, the other's.
+double LowerMedian(std::vector<double>* values) {
+  if (values->empty()) return 0.0;
+  const size_t k = (values->size() - 1) / 2;
+  std::nth_element(values->begin(), values->begin() + k, values->end());
+  return std::max(0.0, (*values)[k]);
+}
+
 // Each kept vertical piece's least-squares fit, refitted over its fitted points within the trim
 // of the last fit until they settle (IterateTrimmedFit): what the piece took from a crossing
-// face at a convex corner drops out. Walls only: the 2½D mapper uses nothing else, and a floor
-// holds most of a cloud's points.
+// face at a convex corner drops out; a piece still leaning between two faces after that is fitted
+// to the line most of its points lie on (DominantLineFit). Walls only: the 2½D mapper uses
+// nothing else, and a floor holds most of a cloud's points.
 void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
                          std::vector<Piece>* pieces) {
   // The fitted points (fit_order, grouped by cell) of each vertical piece, in one buffer.
@@ -318,17 +360,49 @@ void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorksp
       points[next[piece]++] = Eigen::Vector3f(cloud.x[i], cloud.y[i], cloud.z[i]) - origin;
     }
   }
+  std::vector<PlaneFit> fits(pieces->size());
+  std::vector<double> along(pieces->size(), 0.0);  // mean (n.d)^2 over the points' unit rays d
+  std::vector<double> ray_variance;                // what each piece's RMS implies along rays
   for (size_t k = 0; k < pieces->size(); ++k) {
     if (start[k + 1] == start[k]) continue;
-    Piece& p = (*pieces)[k];
+    const Piece& p = (*pieces)[k];
     PlaneFit fit;
     fit.normal = p.trimmed_normal;
     fit.centroid = p.trimmed_centroid.cast<double>();
     fit.rms = p.trimmed_rms;
     fit.count = p.trimmed_count;
-    fit = IterateTrimmedFit(points.data() + start[k], start[k + 1] - start[k],
-                            p.trimmed_centroid.cast<double>(), fit, kTrimSigmas,
-                            options.sigma_min, kMaxRefits);
+    fits[k] = IterateTrimmedFit(points.data() + start[k], start[k + 1] - start[k],
+                                p.trimmed_centroid.cast<double>(), fit, kTrimSigmas,
+                                options.sigma_min, kMaxRefits);
+    if (!options.dominant_line_fit) continue;
+    along[k] = MeanSquaredIncidence(points.data() + start[k], start[k + 1] - start[k],
+                                    p.trimmed_centroid, fits[k].normal);
+    if (fits[k].count >= kMinNoisePoints && along[k] > 0.0) {
+      ray_variance.push_back(fits[k].rms * fits[k].rms / along[k] -
+                             RangeVariance(options, fits[k].centroid));
+    }
+  }
+  // The sensor's noise along its rays, from the frame's vertical pieces: the lower median of
+  // what each one's RMS implies, so that a leaning piece or two do not raise it. (Described
+  // later, the ray-noise fit pools it over all pieces, weighed by their size.)
+  const double sensor_variance = LowerMedian(&ray_variance);
+  for (size_t k = 0; k < pieces->size(); ++k) {
+    if (start[k + 1] == start[k]) continue;
+    Piece& p = (*pieces)[k];
+    PlaneFit fit = fits[k];
+    const double expected =
+        std::max(static_cast<double>(options.sigma_min),
+                 std::sqrt(std::max(
+                     0.0, along[k] * (sensor_variance + RangeVariance(options, fit.centroid)))));
+    if (options.dominant_line_fit && fit.rms > kLeaningRms * expected) {
+      const PlaneFit line = DominantLineFit(
+          points.data() + start[k], start[k + 1] - start[k], p.trimmed_centroid.cast<double>(), fit,
+          kTrimSigmas * expected, kTrimSigmas, options.sigma_min, kMaxRefits, kMinLineShare);
+      if (line.fits > 0) {
+        fit = line;
+        p.line_refit = true;
+      }
+    }
     if (fit.fits == 0) continue;
     p.trimmed_count = fit.count;
     p.trimmed_centroid = fit.centroid.cast<float>();
@@ -416,14 +490,11 @@ PieceWorkspace::~PieceWorkspace() = default;
 PieceWorkspace::PieceWorkspace(PieceWorkspace&&) noexcept = default;
 PieceWorkspace& PieceWorkspace::operator=(PieceWorkspace&&) noexcept = default;
 
-std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<int32_t>& labels,
-                                          const std::vector<uint8_t>& ambiguous,
-                                          const std::vector<EmPlane>& planes,
-                                          const Options& options, float angular_step,
-                                          float ray_step, float share,
-                                          std::vector<int32_t>* piece_labels,
-                                          PieceWorkspace* workspace,
-                                          std::vector<uint8_t>* plane_has_piece) {
+std::vector<DetectedPlane> DescribePieces(
+    const Cloud& cloud, const std::vector<int32_t>& labels, const std::vector<uint8_t>& ambiguous,
+    const std::vector<EmPlane>& planes, const Options& options, float angular_step, float ray_step,
+    float share, std::vector<int32_t>* piece_labels, PieceWorkspace* workspace,
+    std::vector<uint8_t>* plane_has_piece, std::vector<LineRefit>* line_refits) {
   PieceWorkspace local;
   PieceWorkspace::Buffers& w = workspace ? workspace->Get() : local.Get();
   if (piece_labels) piece_labels->assign(cloud.size(), -1);
@@ -472,6 +543,31 @@ std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<
   std::vector<PieceStats> described;
   std::vector<int32_t> index;
   Describe(cloud, options, &w, &pieces, &described, &index);
+  if (line_refits) {
+    // Per mixture plane, its largest piece fitted to a line: the plane to assign again with.
+    line_refits->clear();
+    std::vector<int> largest(planes.size(), -1);
+    for (const Piece& p : pieces) {
+      if (!p.kept || !p.line_refit || p.trimmed_count < 3) continue;
+      if (largest[p.plane] >= 0 && largest[p.plane] >= p.support) continue;
+      largest[p.plane] = p.support;
+      const EmPlane& was = planes[p.plane];
+      Eigen::Vector3f n = p.trimmed_normal.cast<float>();
+      if (n.dot(was.normal) < 0.0f) n = -n;
+      EmPlane refit = was;
+      refit.normal = n;
+      refit.d = -n.dot(p.trimmed_centroid);
+      refit.sigma = std::clamp(p.trimmed_rms, options.sigma_min, options.sigma_max);
+      refit.centroid = p.trimmed_centroid;
+      auto same = std::find_if(line_refits->begin(), line_refits->end(),
+                               [&](const LineRefit& r) { return r.plane == p.plane; });
+      if (same != line_refits->end()) {
+        same->refit = refit;
+      } else {
+        line_refits->push_back({p.plane, refit});
+      }
+    }
+  }
 
   std::vector<int32_t> merged_into;
   std::vector<PieceStats> merged = MergeTouchingPieces(std::move(described), options, &merged_into);

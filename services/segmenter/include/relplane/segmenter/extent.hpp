@@ -26,6 +26,14 @@ class PieceWorkspace {
   std::unique_ptr<Buffers> buffers_;
 };
 
+// A mixture plane whose largest piece leaned between two faces and was fitted to the line most
+// of its points lie on (DominantLineFit): the plane of that line, with the piece's RMS as its
+// sigma. `plane` indexes the mixture planes passed to DescribePieces.
+struct LineRefit {
+  int plane = -1;
+  EmPlane refit;
+};
+
 // For every plane, the points labelled with it are binned into an occupancy grid in the
 // plane's own coordinates (options.cell_size); occupied cells within reach of one another form
 // one piece, so two walls on one line with a door between them are two planes. The reach is
@@ -46,14 +54,13 @@ class PieceWorkspace {
 // `ambiguous` (from AssignPoints, may be empty) marks points on the strip where two planes
 // meet: they belong to a piece but cannot connect pieces. `piece_labels` (optional) receives
 // each point's index into the result, -1 for points in no piece. `workspace` (optional) keeps
-// the buffers for the next call.
-std::vector<DetectedPlane> DescribePieces(const Cloud& cloud, const std::vector<int32_t>& labels,
-                                          const std::vector<uint8_t>& ambiguous,
-                                          const std::vector<EmPlane>& planes,
-                                          const Options& options, float angular_step = 0.0f,
-                                          float ray_step = 0.0f, float share = 1.0f,
-                                          std::vector<int32_t>* piece_labels = nullptr,
-                                          PieceWorkspace* workspace = nullptr,
-                                          std::vector<uint8_t>* plane_has_piece = nullptr);
+// the buffers for the next call. `line_refits` (optional) receives the mixture planes whose
+// piece was fitted to a line (LineRefit).
+std::vector<DetectedPlane> DescribePieces(
+    const Cloud& cloud, const std::vector<int32_t>& labels, const std::vector<uint8_t>& ambiguous,
+    const std::vector<EmPlane>& planes, const Options& options, float angular_step = 0.0f,
+    float ray_step = 0.0f, float share = 1.0f, std::vector<int32_t>* piece_labels = nullptr,
+    PieceWorkspace* workspace = nullptr, std::vector<uint8_t>* plane_has_piece = nullptr,
+    std::vector<LineRefit>* line_refits = nullptr);
 
 }  // namespace relplane::segmenter
