@@ -87,5 +87,30 @@ TEST(IterateTrimmedFit, FewerThanThreePointsLeaveTheStart) {
   EXPECT_EQ(fit.normal, start.normal);
 }
 
+// Two parallel faces 4 cm apart, 1 cm noise across each, the fit started on the nearer one's
+// points within 2 cm: each trim at 2.5 sigma of the fit's RMS takes in more of the other face,
+// and the fit walks over towards it. Capped at 2 cm (max_trim) it stays on the first face: how
+// DominantLineFit keeps to the line it chose (a door recess's wall and back wall at a corner
+// otherwise grew back into one fit, and the recess's jamb went into it).
+TEST(IterateTrimmedFit, ACappedTrimStaysOnTheFaceItStartedOn) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  std::uniform_real_distribution<double> along(0.0, 1.0);
+  std::vector<Eigen::Vector3f> points, near;
+  for (int i = 0; i < 4000; ++i) {
+    const double y = (i % 2 ? 0.04 : 0.0) + noise(rng);
+    points.emplace_back(along(rng), y, 2.0 * along(rng));
+    if (std::abs(y) < 0.02) near.push_back(points.back());
+  }
+  const PlaneFit start = LeastSquares(near);
+  const PlaneFit free = IterateTrimmedFit(points.data(), points.size(), Eigen::Vector3d::Zero(),
+                                          start, 2.5f, 0.003f, 10);
+  const PlaneFit capped = IterateTrimmedFit(points.data(), points.size(), Eigen::Vector3d::Zero(),
+                                            start, 2.5f, 0.003f, 10, 0.02);
+  EXPECT_GT(free.centroid.y(), 0.01) << "the free trim no longer walks";
+  EXPECT_LT(std::abs(capped.centroid.y()), 0.006);
+  EXPECT_LT(capped.count, free.count);
+}
+
 }  // namespace
 }  // namespace relplane::segmenter

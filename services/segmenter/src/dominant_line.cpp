@@ -109,7 +109,7 @@ PlaneFit DominantLineFit(const Eigen::Vector3f* points, size_t num_points,
   fit.scatter = scatter;
   fit.count = count;
   PlaneFit refit =
-      IterateTrimmedFit(points, num_points, origin, fit, trim_sigmas, sigma_min, max_fits);
+      IterateTrimmedFit(points, num_points, origin, fit, trim_sigmas, sigma_min, max_fits, trim);
   if (refit.fits == 0) refit = fit;
   refit.fits += 1;
   if (refit.count < min_share * start.count ||

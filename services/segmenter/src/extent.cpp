@@ -557,7 +557,9 @@ std::vector<DetectedPlane> DescribePieces(
       EmPlane refit = was;
       refit.normal = n;
       refit.d = -n.dot(p.trimmed_centroid);
-      refit.sigma = std::clamp(p.trimmed_rms, options.sigma_min, options.sigma_max);
+      // Never a wider band than EM gave it: the line is to take in less, not more.
+      refit.sigma =
+          std::clamp(p.trimmed_rms, options.sigma_min, std::max(options.sigma_min, was.sigma));
       refit.centroid = p.trimmed_centroid;
       auto same = std::find_if(line_refits->begin(), line_refits->end(),
                                [&](const LineRefit& r) { return r.plane == p.plane; });

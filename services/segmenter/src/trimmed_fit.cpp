@@ -22,13 +22,14 @@ double CutGaussianRmsShare(double k) {
 
 PlaneFit IterateTrimmedFit(const Eigen::Vector3f* points, size_t num_points,
                            const Eigen::Vector3d& origin, const PlaneFit& start, float trim_sigmas,
-                           float sigma_min, int max_fits) {
+                           float sigma_min, int max_fits, double max_trim) {
   PlaneFit fit = start;
   fit.fits = 0;
   const double share = CutGaussianRmsShare(trim_sigmas);
   double sigma = start.rms / share;
   for (int k = 0; k < max_fits; ++k) {
-    const double trim = trim_sigmas * std::max(sigma, static_cast<double>(sigma_min));
+    const double trim =
+        std::min(max_trim, trim_sigmas * std::max(sigma, static_cast<double>(sigma_min)));
     // About the current centroid, in float: the points lie within the piece's extent of it.
     const Eigen::Vector3f n = fit.normal.cast<float>();
     const Eigen::Vector3f c = (fit.centroid - origin).cast<float>();

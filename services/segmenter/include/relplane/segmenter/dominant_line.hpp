@@ -22,7 +22,7 @@ namespace relplane::segmenter {
 // Tries lines through pairs of points, turning about the piece's vertical axis (the in-plane
 // direction nearest +z), and keeps the one with the most points within `trim` of it; its points
 // within the trim are fitted and refitted as IterateTrimmedFit does (`trim_sigmas`, `sigma_min`,
-// `max_fits`).
+// `max_fits`), never with a wider trim than `trim`.
 // Returns `start` (fits = 0) unless that fit keeps at least `min_share` of start.count points
 // and turns from it by at most 0.2 rad (a piece mostly of another surface is left alone), and
 // for a piece whose points spread less than 0.2 m along the wall (no line to tell from noise).

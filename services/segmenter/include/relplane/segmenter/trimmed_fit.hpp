@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <limits>
 
 namespace relplane::segmenter {
 
@@ -30,8 +31,11 @@ struct PlaneFit {
 // a few centimetres of them. Its piece's first fit leans towards them by up to several degrees
 // and its RMS grows with them, so one trim at 2.5 of that RMS keeps most of them; each refit
 // leans less and trims tighter.
+// `max_trim` (m) caps the trim: a fit that starts on one surface of several cannot grow back
+// over the others (DominantLineFit).
 PlaneFit IterateTrimmedFit(const Eigen::Vector3f* points, size_t num_points,
                            const Eigen::Vector3d& origin, const PlaneFit& start, float trim_sigmas,
-                           float sigma_min, int max_fits);
+                           float sigma_min, int max_fits,
+                           double max_trim = std::numeric_limits<double>::infinity());
 
 }  // namespace relplane::segmenter
