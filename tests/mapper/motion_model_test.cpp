@@ -77,6 +77,27 @@ TEST(MotionModel, StandsStillWhileTurningOnTheSpot) {
   EXPECT_LE(r.max_error, 0.051) << Describe(r);
 }
 
+TEST(MotionModel, AHeadingThatWobblesBackAndForthIsNoTurn) {
+  // Along the open hallway the heading each iteration's walls give wobbles back and forth by more
+  // than a turn on the spot turns in one iteration (walking through a door with only its jambs in
+  // view, 0.01-0.02 rad from one frame to the next). That is no turn: the position must move on.
+  IdealSegmenter segmenter(HallwayWithOneDoor(), Frustum{});
+  Mapper mapper;
+  const std::vector<geometry::Pose2> poses = Drive({{0, 0}, {20, 0}}, 1.5, 1.0);
+  double worst = 0.0;
+  int open = 0;
+  for (size_t k = 0; k < poses.size(); ++k) {
+    geometry::Pose2 seen_from = poses[k];
+    if (k >= 120 && k < 240) seen_from.yaw += k % 2 == 0 ? 0.008 : -0.008;
+    const PoseEstimate est = mapper.Process(static_cast<int64_t>(k), segmenter.Planes(seen_from));
+    if (k >= 120 && k < 240) open += est.status == PoseStatus::kMotionModel;
+    worst = std::max(worst, (est.pose.Translation() - poses[k].Translation()).norm());
+  }
+  ASSERT_GT(open, 100) << "the hallway was not open: the test shows nothing";
+  // Each wobble taken for a turn, the position stood still for the next iteration.
+  EXPECT_LT(worst, 0.05);
+}
+
 TEST(MotionModel, AFixedPoseOrTwoBetweenOpenSpellsKeepsTheVelocity) {
   // Walls fix the position for a moment between two spells the §II.E motion model carries (a
   // door jamb seen for two iterations beside the one wall face in view): the velocity learnt

@@ -467,11 +467,21 @@ geometry::Pose2 Mapper::Predict(int64_t iteration, bool* known) const {
   // simulator's paths), and a sideways part is the noise of the fixed poses, which would walk
   // the position off along an open direction.
   const Eigen::Vector2d step(std::clamp(steps[steps.size() / 2], -kMaxStep, kMaxStep), 0.0);
+  // Turning on the spot, standing still is the motion: the heading turned over the last iteration
+  // and over the last two. A heading from short walls alone wobbles back and forth by more than a
+  // turn's step, but its wobbles do not add up: walking through a door with only its 0.15 m jambs
+  // in view, headings 0.013-0.019 rad apart frame to frame passed for a turn each, the position
+  // stood still on three of eight iterations, and the next room was mapped 5 cm back
+  // (office_other_sensor, σ = 1 cm, seed 41: ATE 0.049 m).
   auto before = state_.poses.lower_bound(last_iteration_ - 1);
   if (before != state_.poses.end() && before->first < last_iteration_ &&
       Turning(before->second, pose_, last_iteration_ - before->first)) {
-    *known = true;  // turning on the spot: standing still is the motion
-    return pose_;
+    auto earlier = state_.poses.lower_bound(before->first - 1);
+    if (earlier == state_.poses.end() || earlier->first >= before->first ||
+        Turning(earlier->second, pose_, last_iteration_ - earlier->first)) {
+      *known = true;
+      return pose_;
+    }
   }
   const double frames = static_cast<double>(iteration - last_iteration_);
   const Eigen::Vector2d moved = pose_.Translation() + pose_.Rotation() * step * frames;
