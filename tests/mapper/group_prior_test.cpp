@@ -429,5 +429,33 @@ TEST(GroupPrior, AMemberSeenOnlySinceTheGroupWasMadeFixesADirectionTheOtherLines
   ExpectEndWallAndLeftEndWhereTheyAre(state);
 }
 
+TEST(GroupPrior, AShortPiecesLineMeasuredMetresAwayHardlyMovesThePrior) {
+  // As above, with a door jamb 0.1 m long beside the end wall (x = 3.5, y from -0.6 to -0.5)
+  // in group 1, known by its line (Known::kLine) as its comparisons placed it: measured where it
+  // crosses y = 3 and turned 0.02 rad, a short piece's bias, so 3.55 m away, where it stands, its
+  // line is 7 cm off. Along x the end wall's line must place the group: counted as
+  // fully as the end wall, the jamb moved the prior 3.5 cm (an office's room and the pose went
+  // 2.7 cm across it when its basis changed, and a wall there was mapped 6 cm off).
+  MapperState state = HallwayWithAnEndSeenShort();
+  RltPlane jamb(3, SeenAlongX({3.5, -0.6}, {3.5, -0.5}, 0.4, 4), 0.05, 1000);
+  jamb.Add(SeenAlongX({3.5, -0.6}, {3.5, -0.5}, 0.5, 5));
+  jamb.groups = {1};
+  state.planes.emplace(3, std::move(jamb));
+  const auto alpha = [&](int64_t id) { return state.Plane(id)->Latest().Alpha(); };
+  // Group 1's frame: the left side's far end at the origin (the world's (3, 1)).
+  const Placement left_end =
+      Placed(alpha(1), {0, 0}, FarEnd(state.Plane(1)->Latest()), Known::kPoint);
+  const Placement end_line = Placed(alpha(0), {1, 0}, -1, Known::kLine);
+  const Placement right_angle = Placed(alpha(2), {0, -2}, -1, Known::kAngle);
+  const Placement jamb_line = Placed(alpha(3) + 0.02, {0.5, 2}, -1, Known::kLine);
+  state.groups.push_back(
+      Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_angle}, {3, jamb_line}}, 1));
+  BuildGlobalMap(state, 1, MapperOptions{});
+  ASSERT_TRUE(state.global.count(0) && state.global.count(1));
+  const Placement& placed = state.global.at(0);
+  EXPECT_NEAR(std::abs(NormalOf(placed.alpha).dot(placed.point)), 4.0, 0.002);
+  EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 0.002);
+}
+
 }  // namespace
 }  // namespace relplane::mapper

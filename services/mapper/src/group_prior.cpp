@@ -337,7 +337,7 @@ Prior PriorWithMemberLines(MapperState& state, size_t g, const MapperOptions& op
       continue;
     }
     const SeenWall seen = fixed.valid ? fixed : SeenWhenMade(state, g, id, options);
-    prior.lines.push_back({0.5 * (seen.edge[0] + seen.edge[1]), member});
+    prior.lines.push_back({0.5 * (seen.edge[0] + seen.edge[1]), member, state.Plane(id)->Length()});
     const Vector2d n = NormalOf(member.alpha);
     spanned += n * n.transpose();
   }
@@ -358,7 +358,7 @@ Prior PriorWithMemberLines(MapperState& state, size_t g, const MapperOptions& op
     // Not from poses the motion model carried: they stood still along that open direction.
     const SeenWall seen = LineWhenMade(state, g, id, options);
     if (state.fixed_poses.count(seen.iteration) == 0) continue;
-    prior.lines.push_back({0.5 * (seen.edge[0] + seen.edge[1]), member});
+    prior.lines.push_back({0.5 * (seen.edge[0] + seen.edge[1]), member, state.Plane(id)->Length()});
   }
   return prior;
 }

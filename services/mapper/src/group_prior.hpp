@@ -23,6 +23,7 @@ constexpr double kFirstEndAgreement = 0.2;
 struct PriorLine {
   Eigen::Vector2d seen_point = Eigen::Vector2d::Zero();
   Placement member;
+  double length = 0.0;  // m, the member's length (RltPlane::Length)
 };
 
 // A group's prior (§II.D): a placement, and the lines of the members known by more than their
