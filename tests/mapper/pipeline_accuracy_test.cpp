@@ -91,7 +91,9 @@ TEST(PipelineAccuracy, OutAndBackNoisySeed11StartKeepsUpWithTheSensor) {
 // the next door registered to new rltplanes, and only the door's 0.15 m jambs placed the pose
 // (frames 474-481). Their headings wobbled 0.013-0.019 rad frame to frame; each wobble passed for
 // a turn on the spot, the position stood still on three of the eight frames, and the next room
-// and everything after it were mapped 5 cm back (ATE 0.049 m, a wall 6.1 cm off).
+// and everything after it were mapped 5 cm back (ATE 0.049 m, a wall 6.1 cm off). Both are
+// fixed: a turn must show over two iterations (mapper.cpp Predict), and a piece whose first
+// choice another piece took keeps to the wall's older rltplane (registration.cpp).
 TEST(PipelineAccuracy, OfficeOtherSensorNoisySeed41WalksThroughADoorOnItsJambs) {
   const RunResult r = RunScenario("office_other_sensor", 0.01, 41, 0.31);
   const std::vector<accuracy::FramePose> frames = PosedFrames(r, 474, 560);

@@ -37,7 +37,9 @@ void DropRepeatedSightings(
 // rltplanes in `state.recent` are compared, so the cost does not grow with the map. Each
 // rltplane takes at most one observation; the highest scores are assigned first. A plane on
 // the line of one that took a rltplane it matches is a piece of that surface and takes no
-// lesser match.
+// lesser match, but another rltplane of that surface with more sightings that no plane took
+// (its latest sighting, moved from the pose it was seen from into the taken one's, on that one's
+// line).
 // With `now` (the sensor's pose this iteration, as far as it is known), a match must also pass
 // the tests with the latest observation moved from the pose it was seen from (`state.poses`)
 // into it. Compared untransformed, a sighting a few iterations old is judged from where the
