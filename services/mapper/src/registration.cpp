@@ -109,7 +109,6 @@ bool SameSurface(const MapperState& state, int64_t a, int64_t b,
   moved.edge[0] = motion * la.edge[0];
   moved.edge[1] = motion * la.edge[1];
   moved.d = -moved.normal.dot(moved.edge[0]);
-  moved.support = 0;
   return OnLineOf(moved, lb, options);
 }
 
