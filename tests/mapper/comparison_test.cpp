@@ -163,6 +163,58 @@ TEST(Comparison, ParallelPlanesAcrossWithEndsStillInTheViewAreNotAmbiguous) {
   }
 }
 
+TEST(Comparison, AParallelLineIsKeptWhileAShortPlaneFlickersInLength) {
+  // A door jamb at x = 4 (0.3 m, parallel to the end wall x = 6) reported whole and then half
+  // by turns, six iterations each: every turn from growing to shrinking splits the interval
+  // (§II.C), and no piece reaches the samples a static edge is judged on. The lines' distance
+  // does not depend on where along the jamb its edges are, so it is still known.
+  const Vector2d jamb0{4, -1.3}, jamb1{4, -1.0};
+  auto hi = [](int k) { return (k / 6) % 2 == 0 ? 0.3 : 0.15; };
+  Pair p = Build(
+      kEnd0, kEnd1, jamb0, jamb1, 60, [](int) { return 0.0; }, hi);
+  int phases = 0;
+  for (int k = 1; k < 60; ++k) phases += p.b.PhaseAt(k) != p.b.PhaseAt(k - 1);
+  ASSERT_GE(phases, 6) << "the jamb's length did not turn often enough to split the interval";
+  for (int dir = 0; dir < 2; ++dir) {
+    const DirectedStats& s = p.c.From(dir);
+    int lines = 0;
+    for (int i = 0; i < 2; ++i) {
+      double offset = 0.0;
+      if (!s.Line(i, &offset)) continue;
+      ++lines;
+      EXPECT_NEAR(std::abs(offset), 2.0, 1e-6);
+    }
+    EXPECT_GT(lines, 0) << "from plane " << dir;
+  }
+}
+
+TEST(Comparison, ShortSubIntervalsThatDisagreeOnAParallelLineGiveNone) {
+  // As above, but every other six iterations the piece taken for the jamb lies 0.3 m further
+  // (a recess's back wall registered to it): each sub-interval is steady on its own, together
+  // they are not, and the line is left unknown rather than placed between the two.
+  ComparisonOptions options;
+  auto pose = [](int k) { return geometry::Pose2{0.03 * k, 0.0, 0.0}; };
+  auto jamb = [&](int k) {
+    const double x = (k / 6) % 2 == 0 ? 4.0 : 4.3;
+    const double len = (k / 6) % 2 == 0 ? 0.3 : 0.15;
+    return See(pose(k), {x, -1.3}, {x, -1.0}, 0.0, len, k);
+  };
+  Pair p{RltPlane(0, See(pose(0), kEnd0, kEnd1, 0, 2, 0), 0.05, 1000),
+         RltPlane(1, jamb(0), 0.05, 1000)};
+  for (int k = 1; k < 60; ++k) {
+    p.a.Add(See(pose(k), kEnd0, kEnd1, 0, 2, k));
+    p.b.Add(jamb(k));
+  }
+  p.c.Update(p.a, p.b, 59, options, 5);
+  for (int dir = 0; dir < 2; ++dir) {
+    for (int i = 0; i < 2; ++i) {
+      double offset = 0.0;
+      EXPECT_FALSE(p.c.From(dir).Line(i, &offset))
+          << "from plane " << dir << ", edge " << i << ": " << offset;
+    }
+  }
+}
+
 TEST(Comparison, PiecesOfOneWallWhoseEndsRideWithTheViewHaveNoStaticPairing) {
   // One long wall y = 1 from x = 2, seen in two pieces while the sensor drives along it: the
   // near piece from the wall's start (static) to a split 4 m ahead of the sensor, the far

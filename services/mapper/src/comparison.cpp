@@ -130,11 +130,25 @@ double Std1(const double* sums, double n) {
 StaticVerdict Judge(const SubInterval& s, const ComparisonOptions& options) {
   StaticVerdict v;
   const double n = s.n;
-  if (n < options.min_samples) return v;
-  double motion = 0.0;
-  for (const auto& e : s.edges) motion = std::max(motion, Std2(e, n));
   const double dalpha = std::atan2(s.sin_sum, s.cos_sum);
   const bool parallel = std::abs(std::sin(dalpha)) < std::sin(options.parallel_angle);
+  if (n < options.min_samples) {
+    // Too short to judge edges on, but a parallel line's offset does not depend on where the
+    // edges are: kept aside where steady (DirectedStats::short_line_sum). One sample shows no
+    // steadiness.
+    if (!parallel || n < 2) return v;
+    for (int dir = 0; dir < 2; ++dir) {
+      for (int i = 0; i < 2; ++i) {
+        if (Std1(s.line[dir][i], n) > options.static_std) continue;
+        v.stats[dir].short_line_sum[i] += s.line[dir][i][0];
+        v.stats[dir].short_line_sq[i] += s.line[dir][i][1];
+        v.stats[dir].short_line_count[i] += n;
+      }
+    }
+    return v;
+  }
+  double motion = 0.0;
+  for (const auto& e : s.edges) motion = std::max(motion, Std2(e, n));
   // Lines are steady whether or not the sensor moves relative to their edges.
   for (int dir = 0; dir < 2; ++dir) {
     for (int i = 0; i < 2; ++i) {
@@ -223,6 +237,9 @@ DirectedStats::DirectedStats() {
     }
     line_sum[i] = 0.0;
     line_count[i] = 0.0;
+    short_line_sum[i] = 0.0;
+    short_line_sq[i] = 0.0;
+    short_line_count[i] = 0.0;
   }
 }
 
@@ -235,6 +252,9 @@ void DirectedStats::Add(const DirectedStats& other) {
     }
     line_sum[i] += other.line_sum[i];
     line_count[i] += other.line_count[i];
+    short_line_sum[i] += other.short_line_sum[i];
+    short_line_sq[i] += other.short_line_sq[i];
+    short_line_count[i] += other.short_line_count[i];
   }
 }
 
@@ -251,8 +271,16 @@ double DirectedStats::PairStd(int i, int j) const {
 }
 
 bool DirectedStats::Line(int i, double* mean) const {
-  if (line_count[i] <= 0.0) return false;
-  *mean = line_sum[i] / line_count[i];
+  if (line_count[i] > 0.0) {
+    *mean = line_sum[i] / line_count[i];
+    return true;
+  }
+  if (short_line_count[i] < kMinPooled) return false;
+  const double m = short_line_sum[i] / short_line_count[i];
+  if (std::sqrt(std::max(0.0, short_line_sq[i] / short_line_count[i] - m * m)) > kPooledStd) {
+    return false;
+  }
+  *mean = m;
   return true;
 }
 

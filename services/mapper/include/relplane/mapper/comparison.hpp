@@ -26,6 +26,19 @@ struct DirectedStats {
   // it was steady: pins B's line even when none of B's edges is static.
   double line_sum[2];
   double line_count[2];
+  // The same for a parallel B over sub-intervals too short to judge edges on, pooled. A door
+  // jamb's length flickers and each turn from growing to shrinking splits the interval (§II.C):
+  // no sub-interval reached ComparisonOptions::min_samples, and a hallway's end wall, parallel to
+  // the jamb 3 m before it, was placed instead from a far wall end 3.3 cm short (the segmenter's
+  // last column at a grazing angle), with the hallway's next leg 3.5 cm off. Read only where no
+  // judged sub-interval gave B's line, over kMinPooled samples in all, and only if the pieces
+  // agree to within kPooledStd (a recess's back wall taken for the jamb for a few iterations
+  // is steady on its own).
+  double short_line_sum[2];
+  double short_line_sq[2];
+  double short_line_count[2];
+  static constexpr double kMinPooled = 10.0;  // samples, as ComparisonOptions::min_samples
+  static constexpr double kPooledStd = 0.01;  // m: parallel fits' offsets agree to millimetres
 
   DirectedStats();
   void Add(const DirectedStats& other);
