@@ -1,5 +1,5 @@
 // relplane-accuracy: scenarios through simulator, EM segmenter and mapper in one process, over
-// a list of sensor-noise seeds, each run held to issue 4's targets (README "Mapper", the seed
+// a list of sensor-noise seeds, each run held to issue 4's targets (README "Mapper", the accuracy
 // table). No bus and no clock: a run gives the same numbers on any machine, so a change to the
 // mapper or the segmenter is judged on many seeds in a few minutes.
 
@@ -74,7 +74,7 @@ int Main(int argc, char** argv) {
       "Runs each SCENARIO through simulator, EM segmenter and mapper in one process (no bus, no "
       "clock), once per sensor-noise seed, and holds each run to the mapper's targets (ATE RMSE, "
       "duplicate walls, worst wall normal and offset, a pose every frame). Prints a line per run "
-      "as it ends and a summary per scenario. Example, the README's seed table: "
+      "as it ends and a summary per scenario. Example: "
       "relplane-accuracy office hallway_loop_doors --sigma 0.01 --seeds 1-6 "
       "--min-wall-length 0.31",
       "relplane-accuracy");

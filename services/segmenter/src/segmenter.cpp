@@ -198,7 +198,7 @@ Result Segmenter::Segment(const Cloud& input) {
   // end with it; 64 % of the noise-free doors loop's frames had such planes, 15 % at 1 cm noise.
   // With options.drop_pieceless_planes the frame is assigned and described again without them.
   // They stay in the mixture the next frame starts from: a wall coming into view has no piece
-  // yet, and dropping them there too did worse on the seed sweeps (README).
+  // yet, and dropping them there too did worse on the seed sweeps (services/mapper/NOTES.md).
   if (options_.drop_pieceless_planes &&
       std::find(has_piece.begin(), has_piece.end(), 0) != has_piece.end()) {
     std::vector<EmPlane> surfaces;

@@ -52,7 +52,7 @@ struct Options {
   // are within this angle: a depth sensor cannot see two surfaces there. At 1 cm noise EM fitted
   // a 0.3 m pilaster side 2 m ahead as two planes 9 degrees apart, each with about half its
   // points over the whole face, in 7 % of a hallway loop's frames, and the pose swung 2 cm
-  // across the hallway and back while they were in view (README.md).
+  // across the hallway and back while they were in view (services/mapper/NOTES.md).
   float overlap_merge_angle_deg = 20.0f;
   int min_em_points = 12;  // EM support (sum of responsibilities) below this is pruned
 
@@ -79,13 +79,13 @@ struct Options {
   // A vertical piece's ends where its samples put them on average, not at its extreme points
   // (wall_ends.hpp): the extreme lands up to a ray spacing short far off and past the end by
   // the noise nearby. On by default with the two options below: together they took the mapper's
-  // seeded runs at 1 cm noise from 43 to 58 of 72 (README.md, "Wall ends from the segmenter").
+  // seeded runs at 1 cm noise from 43 to 58 of 72 (services/mapper/NOTES.md, "Wall ends from the segmenter").
   bool wall_end_estimate = true;
   float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
   // Take the sensor's noise along its rays out of each piece's fit (FitOutRayNoise in
   // merge_pieces.hpp): a plain fit of a short piece seen off to one side tilts towards its rays
   // (1.7 degrees for a 0.15 m wall piece at 1 cm): office_other_sensor's door-frame jambs, up
-  // to 2.6 degrees off, turned its heading by up to 0.6 degrees (README).
+  // to 2.6 degrees off, turned its heading by up to 0.6 degrees (services/segmenter/README.md).
   bool ray_noise_fit = true;
   // A vertical piece whose RMS is well over the noise the frame's other walls show along its
   // normal is refitted to the one line, seen from above, that most of its points lie on
@@ -93,7 +93,7 @@ struct Options {
   // set to that line (segmenter.cpp): a grazing pilaster front whose mixture plane leaned
   // towards the side it meets and took the side's samples up to 10 cm from the corner. At 1 cm
   // noise such fronts leaned up to 7.7 degrees and the sides were seen 0.1 m short; over seeds
-  // 1-72 of loop_other_sensor the mapper met its targets on 64 runs without, 72 with (README.md).
+  // 1-72 of loop_other_sensor the mapper met its targets on 64 runs without, 72 with (services/mapper/NOTES.md).
   bool dominant_line_fit = true;
 
   // Drop the mixture planes that form no piece and assign the frame again without them
