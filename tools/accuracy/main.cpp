@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "relplane/accuracy/baseline.hpp"
 #include "relplane/accuracy/scenario_run.hpp"
 #include "relplane/accuracy/sweep.hpp"
 #include "relplane/common/cli.hpp"
@@ -31,6 +32,7 @@ struct Flags {
   Targets targets;
   int jobs = 0;
   std::string json;
+  std::string baseline;
   std::string frames_dir;
   std::string planes_dir;
   bool check = false;
@@ -99,6 +101,9 @@ int Main(int argc, char** argv) {
       .NonNegative().ShowDefault();
   parser.Add("--jobs,-j", &f.jobs, "runs at once (default: one per core)").NonNegative();
   parser.Add("--json", &f.json, "also write every run's metrics and the summaries to FILE");
+  parser.Add("--baseline", &f.baseline,
+             "compare with an earlier sweep's --json FILE: runs now "
+             "met and now missed, ATE better and worse, run by run");
   parser.Add("--frames", &f.frames_dir, "also write each run's poses, frame by frame, to "
              "DIR/SCENARIO-seedN.csv");
   parser.Add(
@@ -114,7 +119,9 @@ int Main(int argc, char** argv) {
   std::vector<std::string> base_overrides = f.overrides;
   std::vector<RunSpec> specs;
   std::vector<SweepRun> runs;
+  std::vector<BaselineRun> baseline;
   try {
+    if (!f.baseline.empty()) baseline = ReadBaseline(f.baseline);
     if (!f.seeds.empty()) seeds = ParseSeeds(f.seeds);
     if (f.sigma >= 0.0) base_overrides.push_back("sim.sensor.noise_sigma=" + std::to_string(f.sigma));
     if (f.laps > 0) base_overrides.push_back("sim.trajectory.laps=" + std::to_string(f.laps));
@@ -212,6 +219,9 @@ int Main(int argc, char** argv) {
     ate_sum += s.ate_sum_m;
   }
   std::printf("%-24s %4d of %-2zu %9.3f m\n", "all", meeting, runs.size(), ate_sum);
+  if (!f.baseline.empty()) {
+    std::printf("\n%s", ComparisonText(CompareWithBaseline(baseline, runs), f.baseline).c_str());
+  }
   if (!f.json.empty()) {
     std::ofstream out(f.json);
     out << SweepJson(runs, f.targets, base_overrides);
