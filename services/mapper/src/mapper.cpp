@@ -235,8 +235,9 @@ std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation
       Turning(last->second, pose_, 1)) {
     now.yaw = pose_.yaw + geometry::WrapAngle(pose_.yaw - last->second.yaw);
   }
+  std::vector<int64_t> also;  // a line's older rltplane, as well (RegisterObservations)
   std::vector<int64_t> match =
-      RegisterObservations(observations, state_, options_.registration, &now);
+      RegisterObservations(observations, state_, options_.registration, &now, &also);
   // §II.A end: unmatched planes are transformed with the current position (from the planes that
   // did match) and compared to the global map before becoming new rltplanes.
   if (std::find(match.begin(), match.end(), -1) != match.end() && !state_.global.empty()) {
@@ -252,6 +253,7 @@ std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation
       pose = mapper::Localise(sightings, predicted_, frustum_, options_.localisation, held_).pose;
     }
     std::set<int64_t> taken(match.begin(), match.end());
+    taken.insert(also.begin(), also.end());
     int64_t oldest = -1;  // the oldest group placing a wall matched by backtracking
     for (size_t k = 0; k < observations.size(); ++k) {
       if (match[k] >= 0) continue;
@@ -267,6 +269,10 @@ std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation
   MarkJumpedEnds(match, state_, pose_, &observations);  // §II.C: another end, not the wall's
   std::vector<int64_t> visible;
   for (size_t k = 0; k < observations.size(); ++k) {
+    if (match[k] >= 0 && also[k] >= 0) {
+      state_.Plane(also[k])->Add(Observation(observations[k]));  // both ends cut: no end to mark
+      visible.push_back(also[k]);
+    }
     if (match[k] >= 0) {
       state_.Plane(match[k])->Add(std::move(observations[k]));
       visible.push_back(match[k]);

@@ -49,10 +49,15 @@ void DropRepeatedSightings(
 // test only refuses: a plane it alone matches is left to backtracking (§II.A end) or a new
 // rltplane, as untransformed. Letting it match as well registered a door's jambs seen before
 // a turn on into the next room, and the noise-free office's map moved 2 cm.
+// With `also`, for each observation: another rltplane it is added to as well, or -1. That is
+// the wall's older, mapped rltplane when the observation is a line only (both ends cut by the
+// view) and the rltplane it registered to is a younger one the map does not place (AlsoSeenAs
+// in registration.cpp).
 std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observations,
                                           const MapperState& state,
                                           const RegistrationOptions& options,
-                                          const geometry::Pose2* now = nullptr);
+                                          const geometry::Pose2* now = nullptr,
+                                          std::vector<int64_t>* also = nullptr);
 
 // After matching: an end seen uncut now that lies far from where the same rltplane's end was
 // last seen uncut (both placed on the map with the poses then and now, over the last few
