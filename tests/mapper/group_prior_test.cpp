@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <utility>
 
 #include "group_fixtures.hpp"
 #include "ideal_segmenter.hpp"
@@ -455,6 +456,57 @@ TEST(GroupPrior, AShortPiecesLineMeasuredMetresAwayHardlyMovesThePrior) {
   const Placement& placed = state.global.at(0);
   EXPECT_NEAR(std::abs(NormalOf(placed.alpha).dot(placed.point)), 4.0, 0.002);
   EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 0.002);
+}
+
+// Driving along x at 0.1 m an iteration, the walls fixing the pose, with `step` rad between the
+// sensor's rays. Group 1, made at iteration 6, knows the far ends (x = 3) of the hallway's two
+// sides and the end wall x = 4 by its orientation only: its position is its prior's. Before the
+// group was made the ends were seen from x = 0.4 and 0.5 at x = `early_end`, the last sample on
+// each side short of its end; from iteration 20 on they are seen 1 m off at x = 3. Returns where
+// the prior put the sides' ends along x.
+std::pair<double, double> SidesPlacedFromEndsSeenEarlyAndLate(double step, double early_end) {
+  const auto seen = SeenAlongXCut;
+  MapperState state = DrivingAlongX(22, 22);
+  state.angular_step = step;
+  const auto at = [](int64_t k) { return 0.1 * static_cast<double>(k); };
+  RltPlane left(1, seen({-1, 1}, {early_end, 1}, at(4), 4, false), 0.05, 1000);
+  RltPlane right(2, seen({-1, -1}, {early_end, -1}, at(4), 4, false), 0.05, 1000);
+  left.Add(seen({-1, 1}, {early_end, 1}, at(5), 5, false));
+  right.Add(seen({-1, -1}, {early_end, -1}, at(5), 5, false));
+  for (int64_t k = 20; k <= 22; ++k) {
+    left.Add(seen({-1, 1}, {3, 1}, at(k), k, false));
+    right.Add(seen({-1, -1}, {3, -1}, at(k), k, false));
+  }
+  const Observation end = seen({4, -1}, {4, 1}, at(22), 22, false);
+  const double left_alpha = left.Latest().Alpha(), right_alpha = right.Latest().Alpha();
+  const int left_ref = FarEnd(left.Latest()), right_ref = FarEnd(right.Latest());
+  state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
+  state.planes.emplace(1, std::move(left));
+  state.planes.emplace(2, std::move(right));
+  PlaceByPriorOnly(&state, end, 6,
+                   {{1, Placed(left_alpha, {3, 1}, left_ref, Known::kPoint)},
+                    {2, Placed(right_alpha, {3, -1}, right_ref, Known::kPoint)}});
+  if (!state.global.count(1) || !state.global.count(2)) return {NAN, NAN};
+  return {state.global.at(1).point.x(), state.global.at(2).point.x()};
+}
+
+TEST(GroupPrior, AWallEndSeenCoarselyWhenTheGroupWasMadeIsTakenAsSeenMoreFinelySince) {
+  // 0.56 degrees between rays (160 across 90 degrees): seen from x = 0.5 the rays meet the sides
+  // at 22 degrees and land 6.8 cm apart along them, and the last sample lay 7 cm short of each
+  // end; from x = 2.2 they land 1.6 cm apart. The prior must come from those (a side wall's end
+  // beside a door, seen 4.6 m down a hallway, put a group and the walls it placed 10 cm along).
+  const auto [left, right] = SidesPlacedFromEndsSeenEarlyAndLate(M_PI / 2 / 160, 2.93);
+  EXPECT_NEAR(left, 3.0, 1e-9);
+  EXPECT_NEAR(right, 3.0, 1e-9);
+}
+
+TEST(GroupPrior, AWallEndSeenFinelyEnoughWhenTheGroupWasMadeKeepsThatSighting) {
+  // Twice as many rays: seen from x = 0.5 the samples land 3.4 cm apart, and the ends seen 3 cm
+  // short are within the noise of an end. The fixed poses since may have been fixed by this very
+  // group, so their sightings are not taken: the prior stays with the one before it was made.
+  const auto [left, right] = SidesPlacedFromEndsSeenEarlyAndLate(M_PI / 2 / 320, 2.97);
+  EXPECT_NEAR(left, 2.97, 1e-9);
+  EXPECT_NEAR(right, 2.97, 1e-9);
 }
 
 }  // namespace

@@ -55,6 +55,9 @@ SeenWall SeenWhenMade(MapperState& state, size_t g, int64_t id, const MapperOpti
   return seen;
 }
 
+// m: samples this far apart along a wall put its end off by more than the end's own noise
+// (LearnedFrustum::kEdgeNoise, 2 sigma) could.
+constexpr double kCoarseSpacing = 2.0 * LearnedFrustum::kEdgeNoise;
 // m: a sighting's middle this far from the line the others agree on is not the same wall (a
 // mis-association, or a pose the walls fixed wrongly); the pose error from fixed poses is a few
 // centimetres.
@@ -213,9 +216,49 @@ bool MemberShowsEnd(MapperState& state, size_t g, int64_t id, const SeenWall& se
   return it->second;
 }
 
+// m between the sensor's samples along the wall at end `ref` of `seen`, from the pose it was seen
+// from: the angle between rays times r^2 / d (LearnedFrustum::EdgeSpacing). Nought while the
+// angle is not known.
+double SpacingAt(const MapperState& state, const SeenWall& seen, int ref) {
+  const auto pose = state.poses.find(seen.iteration);
+  if (pose == state.poses.end() || state.angular_step <= 0.0) return 0.0;
+  const Vector2d r = seen.edge[ref] - pose->second.Translation();
+  const double d = std::abs(NormalOf(seen.alpha).dot(r));
+  return state.angular_step * r.squaredNorm() / std::max(d, 0.05);
+}
+
+// Member `id`'s end `ref` as most finely sampled from a pose the walls fixed, up to now, where it
+// stood still since the sighting from a fixed pose before (§II.C: a wall end stands still), and
+// that sighting's spacing. The observations are scanned once each, as they come.
+const SeenWall& FinestEndSighting(MapperState& state, size_t g, int64_t id, int ref,
+                                  double* spacing) {
+  Group::FinestEnd& fine = state.groups[g].finest_end[{id, ref}];
+  const RltPlane& plane = *state.Plane(id);
+  const auto& all = plane.Observations();
+  for (size_t i = plane.LowerBound(fine.scanned + 1); i < all.size(); ++i) {
+    const Observation& obs = all[i];
+    const auto pose = state.poses.find(obs.iteration);
+    if (pose == state.poses.end()) break;  // this iteration's, not localised yet
+    fine.scanned = obs.iteration;
+    if (state.fixed_poses.count(obs.iteration) == 0) continue;
+    const SeenWall seen = SeenFrom(obs, pose->second);
+    const SeenWall before = fine.previous;
+    fine.previous = seen;
+    if (seen.cut[ref] || !before.valid || before.cut[ref] ||
+        std::abs(DirectionOf(seen.alpha).dot(seen.edge[ref] - before.edge[ref])) > kEndStill) {
+      continue;
+    }
+    const double s = SpacingAt(state, seen, ref);
+    if (!fine.seen.valid || s < fine.spacing) fine.seen = seen, fine.spacing = s;
+  }
+  *spacing = fine.spacing;
+  return fine.seen;
+}
+
 // Prior for group `g`: a member's reference end as seen around when the group was made, put
 // back through its place in the relative map. First choice: the latest sighting of each such end
-// before the group was made, from a pose the walls fixed. A pose the motion model carried
+// before the group was made, from a pose the walls fixed, or where the fixed poses have seen that
+// end more finely sampled since, that sighting. A pose the motion model carried
 // stood still along the hallway while the sensor moved on, and every group placed from it kept
 // that lag on the map (a hallway with doors lost 0.5 m at each stretch between door frames).
 // Only where the earlier such sightings of that end put it (ShowsEnd, §II.C: a wall end stands
@@ -239,10 +282,29 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   int ends = 0;
   for (const auto& [id, rel] : map.members) {
     if (rel.known != Known::kPoint) continue;
-    const SeenWall& seen = SeenFromFixedPose(state, g, id);
-    if (!seen.valid || !MemberShowsEnd(state, g, id, seen, rel.ref)) {
+    const SeenWall& made = SeenFromFixedPose(state, g, id);
+    if (!made.valid || !MemberShowsEnd(state, g, id, made, rel.ref)) {
       continue;
     }
+    // Seen more finely since, from a fixed pose, where it stood still: that sighting. The last
+    // sample on a wall lies up to a sample's spacing short of its end, and the spacing grows with
+    // the square of the range as the rays graze the wall: a side wall's end beside a door, seen
+    // 4.6 m down the hallway with samples 0.21 m apart and 8 cm past it, put a group 10 cm along
+    // the hallway; the walls it placed there, and the pose on the drive back, stayed 10 cm off
+    // (hallway_out_and_back, σ = 1 cm, seed 27).
+    // Only where the sighting then was that coarse (samples further apart than kCoarseSpacing),
+    // and the later one at most half as coarse: a pose fixed after the group was made may have
+    // been fixed by the group itself, so a sighting from it brings the group back to where it
+    // is, give or take the pose's error. Taken where the samples were 4.5 cm apart then and 2-4
+    // cm later, the finest sightings of a wall's end beside a door as the sensor passed it came
+    // from poses 3-5 cm off along the hallway; the group followed them, the poses the group, and
+    // both ended 7 cm along (hallway_loop_doors, σ = 1 cm, seed 90).
+    double fine_spacing = 0.0;
+    const SeenWall& fine = FinestEndSighting(state, g, id, rel.ref, &fine_spacing);
+    const double made_spacing = SpacingAt(state, made, rel.ref);
+    const bool finer =
+        fine.valid && made_spacing > kCoarseSpacing && fine_spacing <= 0.5 * made_spacing;
+    const SeenWall& seen = finer ? fine : made;
     const Pose2 p = PlacementFromSighting(seen, rel);
     sum += p.Translation();
     ++ends;

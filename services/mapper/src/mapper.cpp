@@ -120,6 +120,7 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
       obs.cut[e] = obs.cut[e] || frustum_.Clipped(obs.edge[e], obs.edge[1 - e]);
     }
   }
+  state_.angular_step = frustum_.AngularStep();  // for the groups' priors (group_prior.cpp)
   const std::vector<int64_t> visible = Register(iteration, observations);  // §II.A
   UpdateGroups(state_, visible, iteration, options_.grouping);             // §II.B
   Regroup(state_, iteration, options_);                                    // §II.F

@@ -45,6 +45,8 @@ void Leave(MapperState& state, Group& group, int64_t id) {
   for (auto it = group.shows_end.begin(); it != group.shows_end.end();) {
     it = std::get<0>(it->first) == id ? group.shows_end.erase(it) : std::next(it);
   }
+  group.finest_end.erase({id, 0});
+  group.finest_end.erase({id, 1});
   group.dirty = true;
   RltPlane* plane = state.Plane(id);
   plane->groups.erase(std::remove(plane->groups.begin(), plane->groups.end(), group.id),

@@ -93,6 +93,15 @@ struct Group {
   // its sightings before the group was made (global_map.cpp): those do not change, and judging
   // them again at every build cost more than the rest of an iteration.
   std::map<std::tuple<int64_t, int, int64_t>, bool> shows_end;
+  // Each member end's (id, reference end) most finely sampled sighting from a pose the walls
+  // fixed (group_prior.cpp), with the iteration its observations were scanned to.
+  struct FinestEnd {
+    SeenWall seen;
+    double spacing = 0.0;  // m between the sensor's samples along the wall at that end
+    int64_t scanned = -1;  // iteration
+    SeenWall previous;     // the last sighting from a fixed pose scanned
+  };
+  std::map<std::pair<int64_t, int>, FinestEnd> finest_end;
   bool dirty = true;
   int loop_evidence = 0;  // GroupLoopEvidence when last placed (pose_graph.hpp)
 
@@ -127,6 +136,9 @@ using PairKey = std::pair<int64_t, int64_t>;
 inline PairKey KeyOf(int64_t a, int64_t b) { return a < b ? PairKey{a, b} : PairKey{b, a}; }
 
 struct MapperState {
+  // rad between the sensor's neighbouring rays as the mapper learnt it (LearnedFrustum), nought
+  // while not known: how finely a wall end was sampled.
+  double angular_step = 0.0;
   std::map<int64_t, RltPlane> planes;
   std::map<PairKey, Comparison> comparisons;
   std::vector<Group> groups;                  // index == id
