@@ -217,14 +217,12 @@ bool MemberShowsEnd(MapperState& state, size_t g, int64_t id, const SeenWall& se
 }
 
 // m between the sensor's samples along the wall at end `ref` of `seen`, from the pose it was seen
-// from: the angle between rays times r^2 / d (LearnedFrustum::EdgeSpacing). Nought while the
-// angle is not known.
+// from (EdgeSpacing). Nought while the angle between rays is not known.
 double SpacingAt(const MapperState& state, const SeenWall& seen, int ref) {
   const auto pose = state.poses.find(seen.iteration);
-  if (pose == state.poses.end() || state.angular_step <= 0.0) return 0.0;
+  if (pose == state.poses.end()) return 0.0;
   const Vector2d r = seen.edge[ref] - pose->second.Translation();
-  const double d = std::abs(NormalOf(seen.alpha).dot(r));
-  return state.angular_step * r.squaredNorm() / std::max(d, 0.05);
+  return EdgeSpacing(state.angular_step, r, std::abs(NormalOf(seen.alpha).dot(r)));
 }
 
 // Member `id`'s end `ref` as most finely sampled from a pose the walls fixed, up to now, where it

@@ -100,9 +100,13 @@ void LearnedFrustum::ObserveSampling(const Observation& obs) {
 
 double LearnedFrustum::AngularStep() const { return step_; }
 
+double EdgeSpacing(double step, const Eigen::Vector2d& edge, double d) {
+  if (step <= 0.0) return 0.0;
+  return step * edge.squaredNorm() / std::max(d, 0.05);
+}
+
 double LearnedFrustum::EdgeSpacing(const Eigen::Vector2d& edge, double d) const {
-  if (step_ <= 0.0) return 0.0;
-  return step_ * edge.squaredNorm() / std::max(d, 0.05);
+  return mapper::EdgeSpacing(step_, edge, d);
 }
 
 void LearnedFrustum::UpdateRangeLimit() {

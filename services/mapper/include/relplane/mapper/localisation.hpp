@@ -92,6 +92,11 @@ class LearnedFrustum {
   double step_ = 0.0;
 };
 
+// How far apart a sensor with `step` rad between its rays lands its samples along a wall at its
+// edge `edge` (from the sensor), the wall's line `d` from the sensor: step r^2 / d. Nought while
+// the step is not known (not positive).
+double EdgeSpacing(double step, const Eigen::Vector2d& edge, double d);
+
 // The standard deviation (rad) of an observed wall's orientation from its own fit: a line
 // fitted to `support` points spread evenly over the visible length L with residual `rms` has
 // slope variance rms^2 / (support L^2 / 12). Zero for an exact fit (rms 0), infinite when there
