@@ -223,6 +223,46 @@ TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {
   EXPECT_NEAR(state.global.at(0).point.y(), 0.5, 1e-9);
 }
 
+TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingSampledCoarsely) {
+  // From the start pose, a hallway's right wall A (y = -1) is seen up to its end beside a door
+  // at x = 5, 5 m off at a grazing angle: the rays 0.56 degrees apart land 24 cm apart along the
+  // wall there, and the last one on it lies 10 cm short of the end. From x = 3.5 on, 1.8 m from
+  // the end, the rays land 3 cm apart and the end is seen where it is. Group 0 (with the left
+  // wall L, y = 1, by its line) starts from A's end: its first sighting places only A's line,
+  // and the end as seen finely since places the group along the hallway (its prior).
+  const auto seen = SeenAlongX;
+  MapperState state;
+  state.first_iteration = 0;
+  state.poses[0] = {0.0, 0.0, 0.0};
+  state.fixed_poses.insert(0);
+  state.angular_step = 0.5625 * M_PI / 180.0;  // a 90 degree view over 160 columns
+  RltPlane a(0, seen({1, -1}, {4.9, -1}, 0.0, 0), 0.05, 1000);
+  RltPlane l(1, seen({6, 1}, {1, 1}, 0.0, 0), 0.05, 1000);
+  const int end = std::abs(a.Latest().edge[0].x() - 4.9) < 1e-6 ? 0 : 1;
+  for (int64_t k = 1; k <= 5; ++k) {
+    a.Add(seen({1, -1}, {5, -1}, 3.5, k));
+    l.Add(seen({6, 1}, {1, 1}, 3.5, k));
+    state.poses[k] = {3.5, 0.0, 0.0};
+    state.fixed_poses.insert(k);
+  }
+  for (RltPlane* plane : {&a, &l}) {
+    plane->first_seen = SeenFrom(plane->Observations().front(), state.poses[0]);
+    plane->groups = {0};
+  }
+  const double a_alpha = a.first_seen.alpha, l_alpha = l.first_seen.alpha;
+  const Vector2d across = Eigen::Rotation2Dd(-a_alpha) * Vector2d(0.0, 2.0);
+  state.planes.emplace(0, std::move(a));
+  state.planes.emplace(1, std::move(l));
+  state.groups = {Built(0, 6,
+                        {{0, Placed(0.0, {0, 0}, end, Known::kPoint)},
+                         {1, Placed(l_alpha - a_alpha, across, -1, Known::kLine)}},
+                        0)};
+  BuildGlobalMap(state, 0, MapperOptions{});
+  ASSERT_TRUE(state.global.count(0));
+  EXPECT_NEAR(state.global.at(0).point.x(), 5.0, 0.01);
+  EXPECT_NEAR(state.global.at(0).point.y(), -1.0, 0.01);
+}
+
 // From the start pose, a hallway's left wall A (y = 1) seen over 6 m and, on the right
 // (y = -1), a 1.5 m piece B between two doors 5.5 to 7 m ahead, its first sighting fitted
 // 0.4 degrees off about its middle (a few of a jamb's points). Group 0's relative map has B as

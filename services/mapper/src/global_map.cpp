@@ -401,10 +401,18 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
         const SeenWall seen = plane->first_seen.valid
                                   ? plane->first_seen
                                   : SeenFrom(first, PoseAt(state, first.iteration, options));
-        const int ref =
-            rel.known == Known::kPoint && FirstSightingShowsEnd(state, *plane, seen, rel.ref)
-                ? rel.ref
-                : -1;
+        // Its end too where the sighting shows it, but not where the samples along the wall
+        // landed too far apart there (CoarselySampled): seen 5-6 m off at a grazing angle, the
+        // ends of a side wall's two pieces beside a door recess were sampled 23 and 31 cm apart
+        // and lay 5 and 14 cm short; the first group, placed between the two, put them 9 cm
+        // short, and the poses that took them went 13 cm along the hallway for the rest of the
+        // run (hallway_out_and_back, σ = 1 cm, seed 164).
+        // Its line is taken then, and the prior's ends, each as seen most finely, place it along.
+        const int ref = rel.known == Known::kPoint &&
+                                FirstSightingShowsEnd(state, *plane, seen, rel.ref) &&
+                                !CoarselySampled(state, seen, rel.ref)
+                            ? rel.ref
+                            : -1;
         links.push_back({rel, PlacementOf(seen, ref), plane,
                          SightingOrientationWeight(*plane, seen.iteration)});
       }
