@@ -216,6 +216,15 @@ bool MemberShowsEnd(MapperState& state, size_t g, int64_t id, const SeenWall& se
   return it->second;
 }
 
+// m between the sensor's samples along the wall at end `ref` of `seen`, from the pose it was seen
+// from (EdgeSpacing). Nought while the angle between rays is not known.
+double SpacingAt(const MapperState& state, const SeenWall& seen, int ref) {
+  const auto pose = state.poses.find(seen.iteration);
+  if (pose == state.poses.end()) return 0.0;
+  const Vector2d r = seen.edge[ref] - pose->second.Translation();
+  return EdgeSpacing(state.angular_step, r, std::abs(NormalOf(seen.alpha).dot(r)));
+}
+
 // Member `id`'s end `ref` as most finely sampled from a pose the walls fixed, up to now, where it
 // stood still since the sighting from a fixed pose before (§II.C: a wall end stands still), and
 // that sighting's spacing. The observations are scanned once each, as they come.
@@ -370,13 +379,6 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
 }
 
 }  // namespace
-
-double SpacingAt(const MapperState& state, const SeenWall& seen, int ref) {
-  const auto pose = state.poses.find(seen.iteration);
-  if (pose == state.poses.end()) return 0.0;
-  const Vector2d r = seen.edge[ref] - pose->second.Translation();
-  return EdgeSpacing(state.angular_step, r, std::abs(NormalOf(seen.alpha).dot(r)));
-}
 
 bool CoarselySampled(const MapperState& state, const SeenWall& seen, int ref) {
   return SpacingAt(state, seen, ref) > kCoarseSpacing;

@@ -47,10 +47,6 @@ geometry::Pose2 PoseAt(const MapperState& state, int64_t iteration, const Mapper
 // Falls back to the sighting when the group was made when fewer than two agree.
 SeenWall LineWhenMade(MapperState& state, size_t g, int64_t id, const MapperOptions& options);
 
-// m between the sensor's samples along the wall at end `ref` of `seen`, from the pose it was seen
-// from (EdgeSpacing). Nought while the angle between rays is not known.
-double SpacingAt(const MapperState& state, const SeenWall& seen, int ref);
-
 // Were the samples at end `ref` of `seen` further apart than the end's own noise (2 sigma,
 // LearnedFrustum::kEdgeNoise)? The last sample on the wall is then centimetres short of the end.
 bool CoarselySampled(const MapperState& state, const SeenWall& seen, int ref);
