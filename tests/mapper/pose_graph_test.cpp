@@ -268,6 +268,25 @@ void AddSeenWall(MapperState* state, int64_t id, const Vector2d& a, const Vector
   }
 }
 
+// Compares every pair of the planes AddSeenWall made (§II.C, over iterations 0-59) and makes
+// each plane a member of every group.
+void ShareAll(MapperState* state) {
+  state->next_id = static_cast<int64_t>(state->planes.size());
+  ComparisonOptions options;
+  for (int64_t a = 0; a < state->next_id; ++a) {
+    for (int64_t b = a + 1; b < state->next_id; ++b) {
+      state->comparisons.try_emplace(KeyOf(a, b), a, b)
+          .first->second.Update(state->planes.at(a), state->planes.at(b), 59, options, 5);
+    }
+  }
+  for (size_t g = 0; g < state->groups.size(); ++g) {
+    for (int64_t id = 0; id < state->next_id; ++id) {
+      state->groups[g].members.push_back(id);
+      state->planes.at(id).groups.push_back(static_cast<int64_t>(g));
+    }
+  }
+}
+
 TEST(PoseGraph, AShortPiecesOrientationDoesNotTurnTheGroups) {
   // Two groups share a hallway's side walls (y = 1 and y = -1, 5 m) and a door jamb's 10 cm face
   // across the way, whose orientation the two relative maps have 0.7 degrees apart (a short
@@ -279,19 +298,8 @@ TEST(PoseGraph, AShortPiecesOrientationDoesNotTurnTheGroups) {
   AddSeenWall(&state, upper, {4, 1}, {-1, 1});
   AddSeenWall(&state, lower, {-1, -1}, {4, -1});
   AddSeenWall(&state, jamb, {3, 0.5}, {3, 0.6});
-  state.next_id = 3;
-  ComparisonOptions options;
-  for (int64_t a = 0; a < 3; ++a) {
-    for (int64_t b = a + 1; b < 3; ++b) {
-      state.comparisons.try_emplace(KeyOf(a, b), a, b)
-          .first->second.Update(state.planes.at(a), state.planes.at(b), 59, options, 5);
-    }
-  }
+  ShareAll(&state);
   for (int64_t g = 0; g < 2; ++g) {
-    for (int64_t id = 0; id < 3; ++id) {
-      state.groups[g].members.push_back(id);
-      state.planes.at(id).groups.push_back(g);
-    }
     state.groups[g].relative.members[upper] = Line(M_PI, {0, 1});
     state.groups[g].relative.members[lower] = Line(0.0, {0, -1});
   }
@@ -299,6 +307,32 @@ TEST(PoseGraph, AShortPiecesOrientationDoesNotTurnTheGroups) {
   state.groups[0].relative.members[jamb] = Line(jamb_alpha, {3, 0.55});
   state.groups[1].relative.members[jamb] = Line(jamb_alpha + 0.012, {3, 0.55});
   OptimiseGroupPlacements(state, PoseGraphOptions{});
+  EXPECT_NEAR(state.groups[1].placement.yaw, 0.0, 2e-4);
+}
+
+TEST(PoseGraph, AShortPiecesLineFarFromItsPointDoesNotMoveTheGroups) {
+  // Two groups share a hallway's side walls, an end wall behind the sensor (x = -1) and a door
+  // jamb's 10 cm face ahead (x = 3). Group 1 holds the jamb by its line alone, through a point
+  // 5 m along it; group 0 has the jamb's orientation 1.06 degrees off, well within what its
+  // comparisons hold it to. At 5 m that angle puts the two lines 9 cm apart: weighed as a wall's
+  // line, that tie pulled group 1 12 mm along the hallway against the end wall's and turned it
+  // by 1.1 mrad.
+  MapperState state = GroupsAtTheOrigin(2);
+  const int64_t upper = 0, lower = 1, end = 2, jamb = 3;
+  AddSeenWall(&state, upper, {4, 1}, {-1, 1});
+  AddSeenWall(&state, lower, {-1, -1}, {4, -1});
+  AddSeenWall(&state, end, {-1, 1}, {-1, -1});
+  AddSeenWall(&state, jamb, {3, 0.5}, {3, 0.6});
+  ShareAll(&state);
+  for (int64_t g = 0; g < 2; ++g) {
+    state.groups[g].relative.members[upper] = Line(M_PI, {0, 1});
+    state.groups[g].relative.members[lower] = Line(0.0, {0, -1});
+    state.groups[g].relative.members[end] = Line(-M_PI / 2, {-1, 0});
+  }
+  state.groups[0].relative.members[jamb] = Line(M_PI / 2 + 0.0185, {3, 0.55});
+  state.groups[1].relative.members[jamb] = Line(M_PI / 2, {3, 0.55 - 5.0});
+  OptimiseGroupPlacements(state, PoseGraphOptions{});
+  EXPECT_NEAR(state.groups[1].placement.x, 0.0, 0.002);
   EXPECT_NEAR(state.groups[1].placement.yaw, 0.0, 2e-4);
 }
 
