@@ -220,6 +220,37 @@ TEST(RelativeMap, ALineOnlyMemberIsPlacedFromAParallelWallBeforeACrossingOne) {
   EXPECT_NEAR(std::abs(NormalOf(right.alpha).dot(left.point - right.point)), 4.0, 0.001);
 }
 
+// A member known by its line only (R, a recess's back face 0.3 m behind wall A, its ends cut by
+// the view) takes it from A's other edge where A's reference edge gives no steady line. A's
+// reference is the corner it shares with C across the way, 4.5 m along A from R; R's fit turns
+// by a degree either way from frame to frame (a short face), which moves its line 8 cm there
+// and under a centimetre at A's near edge, 0.3 m from R, which the view cuts as the sensor moves.
+// The offset between two parallel lines does not depend on the edge it is measured from.
+TEST(RelativeMap, AParallelLineUnsteadyFromTheReferenceEdgeIsTakenFromTheOther) {
+  MapperOptions options;
+  MapperState state;
+  const int64_t a = 0, c = 1, r = 2;
+  const Vector2d corner{6, 2}, r0{1.2, 2.3}, r1{1.5, 2.3};
+  for (int64_t k = 0; k < 150; ++k) {
+    See(state, a, k, corner, {1.0 + 0.01 * k, 2});
+    See(state, c, k, {6, -2}, corner);
+    if (k < 50) continue;
+    const Vector2d mid = 0.5 * (r0 + r1);
+    const Eigen::Matrix2d turn =
+        Eigen::Rotation2Dd((k % 2 == 0 ? 1.0 : -1.0) * M_PI / 180.0).toRotationMatrix();
+    See(state, r, k, mid + turn * (r0 - mid), mid + turn * (r1 - mid), true);
+  }
+  AddGroup(state, {a, c, r}, 0);
+  CompareMembers(state, state.groups[0], 149, options);
+  const RelativeMap map = BuildRelativeMap(state.groups[0], state);
+  ASSERT_EQ(map.basis, a);
+  ASSERT_EQ(map.members.count(r), 1u);
+  const Placement& wall = map.members.at(a);
+  const Placement& recess = map.members.at(r);
+  ASSERT_EQ(recess.known, Known::kLine);
+  EXPECT_NEAR(std::abs(NormalOf(wall.alpha).dot(recess.point - wall.point)), 0.3, 0.005);
+}
+
 TEST(Regrouping, APlacementCarriesTheSpreadOfThePairingsThatPlacedIt) {
   MapperOptions options;
   MapperState state;
