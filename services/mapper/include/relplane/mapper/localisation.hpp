@@ -135,7 +135,8 @@ Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& 
 // OrientationSigma, so a short noisy wall such as a door jamb does not turn the heading),
 // position by least squares over the walls' lines (one equation each: the middle of the part in
 // view lies on the mapped line, where the fit is good) and their static edges
-// seen now (one more each, along the wall), with `previous` as a weak prior. With a single
+// seen now (one more each, along the wall; with the motion known, weighed against `previous`
+// there), with `previous` as a weak prior elsewhere. With a single
 // wall, or walls that leave the position underdetermined, the result is the motion model
 // (§II.E): the wall stays where the map has it, the unobserved direction keeps its previous
 // value, and a mapped wall end seen at its predicted place pins the position along the wall.
