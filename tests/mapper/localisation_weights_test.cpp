@@ -272,10 +272,11 @@ TEST(Localisation, WithTheMotionKnownACoarselySampledEndDoesNotMoveThePosition) 
   EXPECT_NEAR(wall.From(frustum, 0).pose.x, 0.08, 1e-3);
 }
 
-// How much a mapped end counts against the learnt velocity's prediction when both are good to a
-// wall end's noise: less as its samples land further apart along the wall.
-double EndWeight(const LearnedFrustum& frustum, const OneWallEnd& wall) {
-  const double spacing = frustum.EdgeSpacing(wall.seen.edge[1], wall.seen.d);
+// How much a mapped end (edge 1 of `seen`, the far one) counts against the learnt velocity's
+// prediction when both are good to a wall end's noise: less as its samples land further apart
+// along the wall.
+double EndWeight(const LearnedFrustum& frustum, const Observation& seen) {
+  const double spacing = frustum.EdgeSpacing(seen.edge[1], seen.d);
   const double noise2 = LearnedFrustum::kEdgeNoise * LearnedFrustum::kEdgeNoise;
   return noise2 / (noise2 + spacing * spacing);
 }
@@ -292,7 +293,7 @@ TEST(Localisation, WithTheMotionKnownAnEndFarFromAFreshPredictionIsNotTheWalls) 
   const PoseEstimate fresh = wall.From(frustum, 1);
   EXPECT_EQ(fresh.status, PoseStatus::kMotionModel);
   EXPECT_NEAR(fresh.pose.x, 0.0, 1e-6);
-  const double w = EndWeight(frustum, wall), prediction = 0.25;  // (3 cm / 6 cm)^2
+  const double w = EndWeight(frustum, wall.seen), prediction = 0.25;  // (3 cm / 6 cm)^2
   EXPECT_NEAR(wall.From(frustum, 30).pose.x, 0.07 * w / (w + prediction), 1e-4);
   EXPECT_NEAR(wall.From(frustum, 0).pose.x, 0.07, 1e-3);
 }
@@ -310,7 +311,7 @@ TEST(Localisation, WithTheMotionKnownAnEndIsWeighedAgainstThePredictionByTheirNo
   EXPECT_EQ(fresh.status, PoseStatus::kMotionModel);
   EXPECT_GT(fresh.pose.x, 0.0);
   EXPECT_LT(fresh.pose.x, 0.001);
-  const double w_fine = EndWeight(frustum, fine);
+  const double w_fine = EndWeight(frustum, fine.seen);
   EXPECT_GT(w_fine, 0.7);
   EXPECT_NEAR(fine.From(frustum, 15).pose.x, 0.025 * w_fine / (w_fine + 1.0), 1e-4);
   EXPECT_NEAR(fine.From(frustum, 0).pose.x, 0.025, 1e-3);
@@ -318,7 +319,7 @@ TEST(Localisation, WithTheMotionKnownAnEndIsWeighedAgainstThePredictionByTheirNo
   const double spacing = frustum.EdgeSpacing(coarse.seen.edge[1], coarse.seen.d);
   ASSERT_GT(spacing, LearnedFrustum::kEdgeNoise);
   ASSERT_LT(spacing, 2.0 * LearnedFrustum::kEdgeNoise);
-  const double w_coarse = EndWeight(frustum, coarse);
+  const double w_coarse = EndWeight(frustum, coarse.seen);
   EXPECT_LT(w_coarse, 0.5);
   EXPECT_NEAR(coarse.From(frustum, 15).pose.x, 0.025 * w_coarse / (w_coarse + 1.0), 1e-4);
 }
@@ -362,10 +363,8 @@ struct HallwayEnd {
 TEST(Localisation, WithTheMotionKnownAnEndThatAloneFixesThePositionIsWeighedAgainstThePrediction) {
   const LearnedFrustum frustum = SampledFrustum();
   const HallwayEnd view;
-  const double spacing = frustum.EdgeSpacing(view.left.edge[1], view.left.d);
-  ASSERT_LT(spacing, LearnedFrustum::kEdgeNoise);
-  const double noise2 = LearnedFrustum::kEdgeNoise * LearnedFrustum::kEdgeNoise;
-  const double w = noise2 / (noise2 + spacing * spacing), prediction = 9.0;  // (3 cm / 1 cm)^2
+  ASSERT_LT(frustum.EdgeSpacing(view.left.edge[1], view.left.d), LearnedFrustum::kEdgeNoise);
+  const double w = EndWeight(frustum, view.left), prediction = 9.0;  // (3 cm / 1 cm)^2
   const geometry::Pose2 origin{0.0, 0.0, 0.0};
   const PoseEstimate known = Localise(view.sightings, origin, frustum, {}, 0, 1);
   EXPECT_EQ(known.status, PoseStatus::kTracking);
