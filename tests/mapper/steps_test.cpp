@@ -76,6 +76,30 @@ TEST(Observation, EdgesSeenThroughANearerPlaneAreCut) {
   for (const Observation& o : obs) EXPECT_FALSE(o.cut[0] || o.cut[1]);
 }
 
+// A far wall's end just past a nearer wall's end, within a degree of bearing, is on the same line
+// of sight and cut when that end is nearer, whichever way round the nearer wall's edges are
+// numbered: the nearer wall here runs away from the sensor, so its other end is not nearer. A far
+// end 8 degrees past it is not cut.
+TEST(Observation, AnEndJustPastANearerWallsEndIsCutWhicheverWayItsEdgesRun) {
+  for (bool swapped : {false, true}) {
+    SCOPED_TRACE(swapped ? "edges swapped" : "edges as made");
+    std::vector<Observation> obs;
+    for (const PlaneInput& in :
+         {Wall({2, 0}, {6.5, 1}), Wall({6, -0.05}, {6, -2}), Wall({8, 2.4}, {8, 4})}) {
+      obs.push_back(*MakeObservation(in, 0, 0.3));
+    }
+    if (swapped) std::swap(obs[0].edge[0], obs[0].edge[1]);
+    MarkOccludedEdges(&obs);
+    EXPECT_FALSE(obs[0].cut[0] || obs[0].cut[1]);
+    // Bearing -0.5 degrees, the nearer wall's end 2 m away at 0: cut; its other end is not.
+    const int near_end = obs[1].edge[0].y() > obs[1].edge[1].y() ? 0 : 1;
+    EXPECT_TRUE(obs[1].cut[near_end]);
+    EXPECT_FALSE(obs[1].cut[1 - near_end]);
+    // Bearings 16.7 and 26.6 degrees, the nearer wall's view ending at 8.7.
+    EXPECT_FALSE(obs[2].cut[0] || obs[2].cut[1]);
+  }
+}
+
 // Two walls a few milliradians from parallel, their lines a few millimetres apart: they fix the
 // position across them and leave it open along them, where the previous position stays put.
 TEST(Localisation, NearParallelWallsLeaveThePositionAlongThemAtThePreviousOne) {

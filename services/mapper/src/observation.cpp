@@ -87,6 +87,20 @@ void MarkOccludedEdges(std::vector<Observation>* observations) {
   constexpr double kBearing = 0.0175;
   constexpr double kNearer = 0.05;  // m
   auto& obs = *observations;
+  // Each plane's view, as bearings from its first edge counter-clockwise: worked out once
+  // rather than for every edge tested against it (four arctangents a pair, a tenth of the
+  // mapper's time at 30 planes in view).
+  struct View {
+    double lo = 0.0, span = 0.0;
+    bool swapped = false;  // edge 1 is the first counter-clockwise
+  };
+  std::vector<View> views(obs.size());
+  for (size_t b = 0; b < obs.size(); ++b) {
+    View& v = views[b];
+    v.lo = std::atan2(obs[b].edge[0].y(), obs[b].edge[0].x());
+    v.span = std::remainder(std::atan2(obs[b].edge[1].y(), obs[b].edge[1].x()) - v.lo, 2 * M_PI);
+    if (v.span < 0.0) v.lo += v.span, v.span = -v.span, v.swapped = true;
+  }
   for (size_t a = 0; a < obs.size(); ++a) {
     for (int e = 0; e < 2; ++e) {
       const Eigen::Vector2d& p = obs[a].edge[e];
@@ -98,17 +112,15 @@ void MarkOccludedEdges(std::vector<Observation>* observations) {
         if (b == a) continue;
         // The edge is seen past a nearer plane: past its end, or through a hole in it (a door
         // in a wall the segmenter reports as one rectangle). A wall end is never seen there.
-        const Eigen::Vector2d* first = &obs[b].edge[0];
-        const Eigen::Vector2d* last = &obs[b].edge[1];
-        double lo = std::atan2(first->y(), first->x());
-        double span = std::remainder(std::atan2(last->y(), last->x()) - lo, 2 * M_PI);
-        if (span < 0.0) lo += span, span = -span, std::swap(first, last);
-        const double off = std::remainder(bearing - lo, 2 * M_PI);
-        if (off < -kBearing || off > span + kBearing) continue;
+        const View& v = views[b];
+        const double off = std::remainder(bearing - v.lo, 2 * M_PI);
+        if (off < -kBearing || off > v.span + kBearing) continue;
+        const Eigen::Vector2d& first = obs[b].edge[v.swapped ? 1 : 0];
+        const Eigen::Vector2d& last = obs[b].edge[v.swapped ? 0 : 1];
         // Within the plane's view: its line on this ray; just beside it: its edge there.
-        const double nearest = off < 0.0      ? first->norm()
-                               : off > span ? last->norm()
-                                            : RayToLine(obs[b], u);
+        const double nearest = off < 0.0      ? first.norm()
+                               : off > v.span ? last.norm()
+                                              : RayToLine(obs[b], u);
         if (nearest < range - kNearer) obs[a].cut[e] = true;
       }
     }

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -134,13 +135,23 @@ struct PoseTie {
 
 using PairKey = std::pair<int64_t, int64_t>;
 inline PairKey KeyOf(int64_t a, int64_t b) { return a < b ? PairKey{a, b} : PairKey{b, a}; }
+struct PairKeyHash {
+  size_t operator()(const PairKey& k) const {
+    // Plane ids are small and dense: mix the two so neighbouring pairs spread over the buckets.
+    const uint64_t h = static_cast<uint64_t>(k.first) * 0x9E3779B97F4A7C15ULL ^
+                       static_cast<uint64_t>(k.second) * 0xC2B2AE3D27D4EB4FULL;
+    return static_cast<size_t>(h ^ (h >> 29));
+  }
+};
 
 struct MapperState {
   // rad between the sensor's neighbouring rays as the mapper learnt it (LearnedFrustum), nought
   // while not known: how finely a wall end was sampled.
   double angular_step = 0.0;
   std::map<int64_t, RltPlane> planes;
-  std::map<PairKey, Comparison> comparisons;
+  // Hashed, not ordered: the relative and global maps look up every pair of a group's members
+  // at every build, and a tree's look-ups were most of that time (nothing walks them in order).
+  std::unordered_map<PairKey, Comparison, PairKeyHash> comparisons;
   std::vector<Group> groups;                  // index == id
   std::vector<int64_t> ungrouped;             // §II.B ungrouped list, oldest first
   std::set<int64_t> recent;                   // seen within the last-seen window (§II.A)
