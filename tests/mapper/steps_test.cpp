@@ -91,7 +91,8 @@ TEST(Observation, AnEndJustPastANearerWallsEndIsCutWhicheverWayItsEdgesRun) {
     if (swapped) std::swap(obs[0].edge[0], obs[0].edge[1]);
     MarkOccludedEdges(&obs);
     EXPECT_FALSE(obs[0].cut[0] || obs[0].cut[1]);
-    // Bearing -0.5 degrees, the nearer wall's end 2 m away at 0: cut; its other end is not.
+    // Bearing -0.5 degrees, the nearer wall's end 2 m away at 0: cut. The far wall's other end,
+    // at -18 degrees, is not.
     const int near_end = obs[1].edge[0].y() > obs[1].edge[1].y() ? 0 : 1;
     EXPECT_TRUE(obs[1].cut[near_end]);
     EXPECT_FALSE(obs[1].cut[1 - near_end]);
