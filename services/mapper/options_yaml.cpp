@@ -40,6 +40,7 @@ MapperOptions ReadMapperOptions(Reader& r) {
   back.Read("margin", &o.backtrack.margin);
   back.Read("open_margin", &o.backtrack.open_margin);
   back.Read("min_overlap", &o.backtrack.min_overlap);
+  back.Read("line_max_angle", &o.backtrack.line_max_angle);
 
   Reader grp = r.Child("grouping");
   grp.Read("min_observations", &o.grouping.min_observations);

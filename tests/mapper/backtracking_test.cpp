@@ -53,5 +53,87 @@ TEST_F(BackWall, NorOneBeyondAnEndSeenStaticLater) {
   EXPECT_EQ(Match({5.0, -1.3}, {5.2, -1.3}), -1);
 }
 
+// A room's wall from x = 3 to 5 that no static edge placed, known by its line only: seen from
+// the start all but its far corner, last as a sliver beside the door at x = 5 as the sensor
+// walked through. The group that placed it is frozen: the loop is a long one.
+class WallKnownByItsLine : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const Observation first = Seen({3.1, -1.3}, {5.0, -1.3});
+    Observation last = Seen({4.93, -1.3}, {5.0, -1.3});
+    last.iteration = 80;
+    RltPlane plane(kId, first, 0.05, 1000);
+    plane.first_seen = SeenFrom(first, geometry::Pose2{});
+    plane.Add(last);
+    state_.planes.emplace(kId, std::move(plane));
+    state_.poses[0] = geometry::Pose2{};
+    state_.poses[80] = geometry::Pose2{};
+    Placement placed;
+    placed.alpha = first.Alpha();
+    placed.known = Known::kLine;
+    placed.point = first.edge[0];
+    state_.global[kId] = placed;
+    state_.groups.emplace_back();
+    state_.groups.back().stage = GroupStage::kFrozen;
+    state_.placed_by[kId] = 0;
+  }
+  int64_t Match(Vector2d a, Vector2d b) const {
+    return MatchGlobal(Seen(a, b), geometry::Pose2{}, state_, {}, BacktrackOptions{});
+  }
+  static constexpr int64_t kId = 7;
+  MapperState state_;
+};
+
+// Back at the end of the loop, its far part is seen again, 1.7 m from the sliver the map draws:
+// it is the same wall, as its first sighting shows.
+TEST_F(WallKnownByItsLine, ItsFarPartSeenAgainJoinsIt) {
+  EXPECT_EQ(Match({3.0, -1.3}, {3.2, -1.3}), kId);
+}
+
+// A bare line reaches no further than its sightings did (and the pose's margin): 0.15-0.35 m
+// past the first sighting's end is not taken, as it would be past a mapped wall's end never
+// seen static.
+TEST_F(WallKnownByItsLine, ButNoFurtherThanItsSightingsReached) {
+  EXPECT_EQ(Match({2.75, -1.3}, {2.95, -1.3}), -1);
+}
+
+// The same line past the door, a metre beyond anything it was seen to reach, is another wall.
+TEST_F(WallKnownByItsLine, TheNextWallOnItsLineDoesNot) {
+  EXPECT_EQ(Match({6.0, -1.3}, {6.4, -1.3}), -1);
+}
+
+// A piece turned further from the line than a loop's heading error and its own fit's blur is
+// not the wall: here 1 m long, 8 degrees off, its middle on the line.
+TEST_F(WallKnownByItsLine, NorAPieceTurnedOffItsLine) {
+  const double half = 0.5, tilt = 8.0 * M_PI / 180.0;
+  const Vector2d mid(4.0, -1.3), along(std::cos(tilt), std::sin(tilt));
+  EXPECT_EQ(Match(mid - half * along, mid + half * along), -1);
+}
+
+// Before its group is frozen the wall's sightings are still compared: a new rltplane is made.
+TEST_F(WallKnownByItsLine, NorWhileItsGroupStillComparesItsSightings) {
+  state_.groups.back().stage = GroupStage::kRegrouped;
+  EXPECT_EQ(Match({3.0, -1.3}, {3.2, -1.3}), -1);
+}
+
+// A wall with a mapped end on the same line wins, though the sighting fits the bare line better.
+TEST_F(WallKnownByItsLine, AWallWithAMappedEndComesFirst) {
+  const Observation end = Seen({3.0, -1.32}, {5.0, -1.32});
+  state_.planes.emplace(kId + 1, RltPlane(kId + 1, end, 0.05, 1000));
+  Placement placed;
+  placed.alpha = end.Alpha();
+  placed.known = Known::kPoint;
+  placed.ref = end.edge[0].x() < end.edge[1].x() ? 0 : 1;  // the end at x = 3
+  placed.point = end.edge[placed.ref];
+  state_.global[kId + 1] = placed;
+  EXPECT_EQ(Match({3.0, -1.3}, {3.2, -1.3}), kId + 1);
+}
+
+// An orientation alone places nothing to compare with.
+TEST_F(WallKnownByItsLine, NorAWallKnownByItsOrientationOnly) {
+  state_.global[kId].known = Known::kAngle;
+  EXPECT_EQ(Match({4.9, -1.3}, {5.0, -1.3}), -1);
+}
+
 }  // namespace
 }  // namespace relplane::mapper

@@ -23,6 +23,9 @@ struct BacktrackOptions {
   double margin = 0.1;         // m the mapped extent is widened by for the overlap test
   double open_margin = 0.25;   // m the same beyond an end never seen static
   double min_overlap = 0.3;    // of the shorter extent
+  // rad: for a wall known by its line only, how far the sighting may turn from it, besides the
+  // blur of a short piece's fit (backtracking.cpp)
+  double line_max_angle = 0.035;
 };
 
 // §II.B grouping.
