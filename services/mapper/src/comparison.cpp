@@ -25,9 +25,11 @@ constexpr double kShortPieceBlur = 0.03;
 
 }  // namespace
 
-double PieceBlur(const Observation& obs) {
-  return std::atan2(kShortPieceBlur, std::max(obs.Length(), 1e-3));
+double PieceBlurOfLength(double length) {
+  return std::atan2(kShortPieceBlur, std::max(length, 1e-3));
 }
+
+double PieceBlur(const Observation& obs) { return PieceBlurOfLength(obs.Length()); }
 
 ObservationTerms ComparisonTerms(const Observation& obs) {
   ObservationTerms t;

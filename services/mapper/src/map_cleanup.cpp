@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "box_grid.hpp"
+#include "relplane/mapper/comparison.hpp"
 #include "relplane/mapper/map_corners.hpp"
 
 namespace relplane::mapper {
@@ -28,14 +29,12 @@ Vector2d DirectionOf(const MappedPlane& m) {
   return {-n.y(), n.x()};
 }
 
-// m: the segmenter's fit of a short piece is only known to about this over its length (a 0.2 m
-// piece beside a door jamb takes some of the jamb's points: a median 2.4 degrees off, one in ten
-// over 5 degrees, on the noisy office; pieces over 1.2 m: 0.05 degrees).
-constexpr double kShortPieceBlur = 0.03;
-
+// The segmenter's fit of a short piece is only known to a few centimetres over its length
+// (PieceBlur: a 0.2 m piece beside a door jamb takes some of the jamb's points, a median 2.4
+// degrees off, one in ten over 5 degrees, on the noisy office; pieces over 1.2 m: 0.05 degrees).
 bool OnLine(const MappedPlane& line, const MappedPlane& other) {
   const double length = (End(other, 1) - End(other, 0)).norm();
-  const double tolerance = std::max(kMergeAngle, std::atan2(kShortPieceBlur, length));
+  const double tolerance = std::max(kMergeAngle, PieceBlurOfLength(length));
   if (line.normal.dot(other.normal) < std::cos(tolerance)) return false;
   const Vector2d n = line.normal.head<2>();
   for (int e = 0; e < 2; ++e) {

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "relplane/mapper/comparison.hpp"
 #include "relplane/mapper/localisation.hpp"
 #include "relplane/mapper/relative_map.hpp"
 
@@ -42,13 +43,33 @@ struct Tie {
 // groups' relative maps disagreed by 0.68 degrees; weighed as a wall's, that one tie turned every
 // group after it by 0.4 degrees when a loop's solve took it in, and moved a room's walls 5-9 cm
 // (office, σ = 1 cm, seed 207). A wall's comparisons hold it to a few thousandths of a radian.
+//
+// The basis is the group's frame (RefineOrientations holds it): its orientation there is off
+// only by its own fit's bias (PieceBlur) while the group was seen, whatever its partners'. The
+// first group of an office loop held the first room's wall x = 3, its basis, and a jamb's 15 cm
+// face: weighed by that one comparison, the anchor's tie to the next group was as loose as a
+// jamb's, the loop's closing solve put its turn there, every later group turned about the first
+// door, and a wall the chain had 3 cm off went to 5 cm (office_other_sensor, σ = 1 cm, seed 115).
+// Where the basis is a jamb, its own bias keeps the tie loose: held as exact, the first group's
+// jamb frame turned the next group by 0.1 degrees (seed 36: a wall 4.8 -> 6.7 cm off).
 double OrientationSpread(const MapperState& state, int64_t g, int64_t id) {
+  const Group& group = state.groups[static_cast<size_t>(g)];
   double information = 0.0;
-  for (int64_t other : state.groups[static_cast<size_t>(g)].members) {
+  double common = 0.0;  // iterations of the basis's longest comparison
+  for (int64_t other : group.members) {
     if (other == id) continue;
-    if (const Comparison* c = state.FindComparison(id, other)) information += c->PieceInformation();
+    if (const Comparison* c = state.FindComparison(id, other)) {
+      information += c->PieceInformation();
+      common = std::max(common, c->Common());
+    }
   }
-  return information > 0.0 ? 1.0 / information : 0.0;
+  double spread = information > 0.0 ? 1.0 / information : 0.0;
+  const auto plane = state.planes.find(id);
+  if (id == group.relative.basis && common > 0.0 && plane != state.planes.end()) {
+    const double blur = PieceBlurOfLength(plane->second.Length());
+    spread = std::min(spread, blur * blur / common);
+  }
+  return spread;
 }
 
 // §II.D as in localisation: walls within ~11 degrees of parallel leave the direction along them

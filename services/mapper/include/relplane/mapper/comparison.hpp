@@ -100,6 +100,8 @@ ObservationTerms ComparisonTerms(const Observation& obs);
 // rad: how far a piece's fitted orientation may be off whatever its points' spread says, a few
 // centimetres over its length (the segmenter gives a short piece some of its neighbour's points).
 double PieceBlur(const Observation& obs);
+// The same for a piece `length` metres long.
+double PieceBlurOfLength(double length);
 
 class Comparison {
  public:
