@@ -25,6 +25,21 @@ TEST(EvalConfig, ReadsLoggerOptionsAndExpectations) {
   EXPECT_EQ(c.expect[1].key, "walls_mapped_min");
 }
 
+// What counts as visible is what the simulated sensor sees, unless the logger says otherwise.
+TEST(EvalConfig, VisibilityDefaultsToTheSimulatedSensor) {
+  const EvalConfig c = ParseEvalConfig(
+      "sim:\n  sensor: {max_range: 6, hfov_deg: 70, width: 200}\n  rate_hz: 30\n", "s.yaml");
+  EXPECT_DOUBLE_EQ(c.options.visibility.range_m, 6.0);
+  EXPECT_DOUBLE_EQ(c.options.visibility.hfov_deg, 70.0);
+  const EvalConfig own = ParseEvalConfig(
+      "sim:\n  sensor: {max_range: 6, hfov_deg: 70}\nlogger:\n  visibility: {range_m: 4}\n",
+      "s.yaml");
+  EXPECT_DOUBLE_EQ(own.options.visibility.range_m, 4.0);
+  EXPECT_DOUBLE_EQ(own.options.visibility.hfov_deg, 70.0);
+  const EvalConfig none = ParseEvalConfig("name: x\n", "s.yaml");
+  EXPECT_DOUBLE_EQ(none.options.visibility.range_m, VisibilityOptions{}.range_m);
+}
+
 TEST(EvalConfig, UnknownOrBadKeysAreOneLineErrors) {
   try {
     ParseEvalConfig("expect:\n  ate_rmse_max: 0.05\n", "s.yaml");

@@ -156,6 +156,61 @@ TEST(MapMetrics, SeenButUnmappedWallIsMissed) {
   EXPECT_TRUE(m.walls[1].mapped_ids.empty());
 }
 
+// A plane over 0.1 m of the 6 m north wall matches it but does not map it: it is missed
+// (partly mapped), as the wall is covered over less than half of what was seen of it.
+TEST(MapMetrics, AWallCoveredOverLessThanHalfItsVisibleLengthIsMissed) {
+  MapSnapshot map = PerfectMap();
+  map.planes[2] = Wall(12, {2.1, 2}, {2.0, 2});
+  const MapMetrics m = Score(map);
+  EXPECT_EQ(m.walls[2].mapped_ids, std::vector<int64_t>{12});
+  EXPECT_FALSE(m.walls[2].mapped);
+  EXPECT_NEAR(m.walls[2].mapped_length_m, 0.1, 1e-9);
+  EXPECT_GT(m.walls[2].visible_length_m, 5.5);
+  EXPECT_LT(m.walls[2].coverage, 0.05);
+  EXPECT_EQ(m.walls_mapped, 3);
+  EXPECT_EQ(m.partly_mapped, 1);
+  EXPECT_EQ(m.missed, 1);
+  // Over 60% of it, from one end, it is mapped.
+  map.planes[2] = Wall(12, {5, 2}, {1.3, 2});
+  const MapMetrics n = Score(map);
+  EXPECT_TRUE(n.walls[2].mapped);
+  EXPECT_NEAR(n.walls[2].coverage, 3.7 / 6.0, 0.05);
+  EXPECT_EQ(n.walls_mapped, 4);
+  EXPECT_EQ(n.missed, 0);
+}
+
+// An outer wall mapped in three correct fragments has its end points where its ends are.
+TEST(MapMetrics, EndPointsAreScoredOverAWallsFragmentsTogether) {
+  MapSnapshot map = PerfectMap();
+  map.planes[0] = Wall(10, {-1, -2}, {1, -2});
+  map.planes.push_back(Wall(14, {1.2, -2}, {3, -2}));
+  map.planes.push_back(Wall(15, {3.2, -2}, {5, -2}));
+  const MapMetrics m = Score(map);
+  EXPECT_EQ(m.walls[0].mapped_ids.size(), 3u);
+  EXPECT_NEAR(m.walls[0].endpoint_error_m[0], 0.0, 1e-9);
+  EXPECT_NEAR(m.walls[0].endpoint_error_m[1], 0.0, 1e-9);
+  EXPECT_NEAR(m.endpoint_error_m.max, 0.0, 1e-9);
+  EXPECT_NEAR(m.walls[0].mapped_length_m, 5.6, 1e-9);
+  EXPECT_TRUE(m.walls[0].mapped);
+}
+
+// The far end of a wall the sensor never came near is not scored: it could not be mapped.
+TEST(MapMetrics, AnEndNeverSeenIsNotScored) {
+  MapSnapshot world;
+  world.planes = {Wall(0, {-1, -1}, {30, -1})};  // a long side wall, its far end out of range
+  std::vector<PoseSample> truth;
+  for (int i = 0; i <= 20; ++i) truth.push_back(testing::Pose(i, 0.1 * i, 0.0, 0.0));
+  MapSnapshot map;
+  map.planes = {Wall(10, {-1, -1}, {9, -1})};
+  const MapMetrics m = ComputeMapMetrics(world, map, truth, EvalOptions{});
+  ASSERT_EQ(m.walls.size(), 1u);
+  // The near end (x = -1) is behind the sensor from every pose: neither end was seen.
+  EXPECT_TRUE(std::isnan(m.walls[0].endpoint_error_m[0]));
+  EXPECT_TRUE(std::isnan(m.walls[0].endpoint_error_m[1]));
+  EXPECT_TRUE(std::isnan(m.endpoint_error_m.max));
+  EXPECT_TRUE(m.walls[0].mapped);  // what was seen (x up to about 10 m) is covered
+}
+
 TEST(MapMetrics, WallsOutOfSightAreNotExpected) {
   MapSnapshot world = Room();
   world.planes.push_back(Wall(5, {-1, -3}, {5, -3}));  // behind the south wall: occluded

@@ -14,8 +14,19 @@ void ReadPositive(config::Reader& r, const std::string& key, double* value) {
   if (!(*value > 0.0)) r.Fail(key, "must be > 0");
 }
 
-EvalOptions ReadOptions(config::Reader r) {
+// The simulated sensor's range and field of view, when the scenario has one: what the run
+// could see. The simulator checks its own section.
+VisibilityOptions SensorVisibility(const std::string& yaml, const std::string& name) {
+  VisibilityOptions v;
+  config::Reader sensor = config::Reader::FromString(yaml, name, "sim").Child("sensor");
+  sensor.Read("max_range", &v.range_m);
+  sensor.Read("hfov_deg", &v.hfov_deg);
+  return v;
+}
+
+EvalOptions ReadOptions(config::Reader r, const VisibilityOptions& visibility) {
   EvalOptions o;
+  o.visibility = visibility;
   ReadPositive(r, "flush_period_s", &o.flush_period_s);
   ReadPositive(r, "rpe_segment_m", &o.rpe_segment_m);
   ReadPositive(r, "svg_width_px", &o.svg_width_px);
@@ -58,7 +69,8 @@ EvalConfig LoadEvalConfig(const std::string& file) {
 
 EvalConfig ParseEvalConfig(const std::string& yaml, const std::string& name) {
   EvalConfig c;
-  c.options = ReadOptions(config::Reader::FromString(yaml, name, "logger"));
+  c.options = ReadOptions(config::Reader::FromString(yaml, name, "logger"),
+                          SensorVisibility(yaml, name));
   c.expect = ReadExpect(config::Reader::FromString(yaml, name, "expect"));
   return c;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace relplane::eval {
 namespace {
@@ -116,6 +117,124 @@ void CountExtraMatches(const WallLine& truth,
   }
 }
 
+// Distances along `wall` from its first end of the points tested for visibility.
+std::vector<double> WallSamples(const WallLine& wall, const VisibilityOptions& options) {
+  const double length = wall.segment.Length();
+  // Stay a little inside the ends so a wall meeting this one at a corner does not hide it.
+  const double inset = std::min(0.05, 0.25 * length);
+  const int steps = std::max(
+      1, static_cast<int>(std::ceil((length - 2 * inset) / std::max(options.sample_step_m, 0.01))));
+  std::vector<double> along;
+  for (int k = 0; k <= steps; ++k) along.push_back(inset + (length - 2 * inset) * k / steps);
+  return along;
+}
+
+// Whether `q`, on `wall`, is in range and field of view of some pose with no other wall of
+// `walls` crossing the line of sight.
+bool PointSeenFrom(const Eigen::Vector2d& q, const WallLine& wall,
+                   const std::vector<WallLine>& walls, const std::vector<PoseSample>& poses,
+                   const VisibilityOptions& options) {
+  const double half_fov = 0.5 * options.hfov_deg * M_PI / 180.0;
+  for (const PoseSample& pose : poses) {
+    const Eigen::Vector2d p = pose.position.head<2>();
+    const Eigen::Vector2d ray = q - p;
+    if (ray.norm() > options.range_m) continue;
+    const double yaw = geometry::YawOf(pose.orientation);
+    if (std::abs(geometry::WrapAngle(std::atan2(ray.y(), ray.x()) - yaw)) > half_fov) continue;
+    const bool blocked = std::any_of(walls.begin(), walls.end(), [&](const WallLine& other) {
+      return other.id != wall.id && Blocks(p, q, other.segment);
+    });
+    if (!blocked) return true;
+  }
+  return false;
+}
+
+// What the truth trajectory saw of a true wall: its samples along the wall (from its lower
+// end along Direction()) and which were seen.
+struct WallView {
+  Eigen::Vector2d lo, hi;  // the wall's ends in the order of its direction
+  std::vector<double> along;
+  std::vector<bool> seen;
+  bool seen_any = false;
+  bool end_seen[2] = {false, false};
+  double visible_length_m = 0.0;
+};
+
+WallView ViewOf(const WallLine& wall, const std::vector<WallLine>& occluders,
+                const std::vector<PoseSample>& viewpoints, const VisibilityOptions& options) {
+  WallView view;
+  const Eigen::Vector2d dir = wall.segment.Direction();
+  view.lo = wall.segment.a;
+  view.hi = wall.segment.b;
+  view.along = WallSamples(wall, options);
+  for (const double t : view.along) {
+    view.seen.push_back(PointSeenFrom(wall.segment.a + t * dir, wall, occluders, viewpoints,
+                                      options));
+  }
+  const size_t n = view.seen.size();
+  view.seen_any = std::find(view.seen.begin(), view.seen.end(), true) != view.seen.end();
+  view.end_seen[0] = view.seen.front();
+  view.end_seen[1] = view.seen.back();
+  // Each sample stands for the wall up to half way to its neighbours (the ends included).
+  const double length = wall.segment.Length();
+  for (size_t k = 0; k < n; ++k) {
+    if (!view.seen[k]) continue;
+    const double from = k == 0 ? 0.0 : 0.5 * (view.along[k - 1] + view.along[k]);
+    const double to = k + 1 == n ? length : 0.5 * (view.along[k] + view.along[k + 1]);
+    view.visible_length_m += to - from;
+  }
+  return view;
+}
+
+struct Coverage {
+  double mapped_length_m = 0.0;       // of the wall, under the union of its matches
+  double fraction = 0.0;              // of the visible part (of the whole wall when none seen)
+  Eigen::Vector2d ends[2];            // the matches' outermost ends, in the wall's direction
+};
+
+// How much of a true wall its matches cover, all fragments together (§ docs/run-folder.md).
+Coverage CoverageOf(const WallLine& wall, const std::vector<std::pair<Candidate, int64_t>>& list,
+                    const std::vector<WallLine>& mapped, const WallView& view) {
+  Coverage c;
+  if (list.empty()) return c;
+  const Eigen::Vector2d dir = wall.segment.Direction();
+  const double base = dir.dot(wall.segment.a);
+  const double length = wall.segment.Length();
+  std::vector<std::pair<double, double>> spans;  // along the wall, from its first end
+  double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+  for (const auto& match : list) {
+    const WallLine& w = ById(mapped, match.second);
+    const auto [m0, m1] = Extent(w.segment, dir);
+    spans.push_back({std::max(0.0, m0 - base), std::min(length, m1 - base)});
+    const auto [e0, e1] = OrderedEnds(w.segment, dir);
+    if (m0 < lo) lo = m0, c.ends[0] = e0;
+    if (m1 > hi) hi = m1, c.ends[1] = e1;
+  }
+  std::sort(spans.begin(), spans.end());
+  double reach = 0.0;
+  for (const auto& [from, to] : spans) {
+    const double start = std::max(from, reach);
+    if (to > start) c.mapped_length_m += to - start;
+    reach = std::max(reach, to);
+  }
+  const auto covered = [&](double t) {
+    return std::any_of(spans.begin(), spans.end(),
+                       [&](const auto& span) { return span.first <= t && t <= span.second; });
+  };
+  if (!view.seen_any) {
+    c.fraction = length > 0.0 ? c.mapped_length_m / length : 0.0;
+    return c;
+  }
+  size_t seen = 0, seen_covered = 0;
+  for (size_t k = 0; k < view.along.size(); ++k) {
+    if (!view.seen[k]) continue;
+    ++seen;
+    if (covered(view.along[k])) ++seen_covered;
+  }
+  c.fraction = static_cast<double>(seen_covered) / static_cast<double>(seen);
+  return c;
+}
+
 }  // namespace
 
 std::vector<WallLine> WallsOf(const std::vector<PlaneRecord>& planes, int64_t* without_extent) {
@@ -168,31 +287,9 @@ bool SpansHeight(const WallLine& wall, double z) {
 
 bool WallSeenFrom(const WallLine& wall, const std::vector<WallLine>& walls,
                   const std::vector<PoseSample>& poses, const VisibilityOptions& options) {
-  const double length = wall.segment.Length();
-  // Stay a little inside the ends so a wall meeting this one at a corner does not hide it.
-  const double inset = std::min(0.05, 0.25 * length);
-  const int samples = std::max(
-      1, static_cast<int>(std::ceil((length - 2 * inset) / std::max(options.sample_step_m, 0.01))));
   const Eigen::Vector2d dir = wall.segment.Direction();
-  const double half_fov = 0.5 * options.hfov_deg * M_PI / 180.0;
-  for (const PoseSample& pose : poses) {
-    const Eigen::Vector2d p = pose.position.head<2>();
-    const double yaw = geometry::YawOf(pose.orientation);
-    if (wall.segment.DistanceTo(p) > options.range_m) continue;
-    for (int k = 0; k <= samples; ++k) {
-      const Eigen::Vector2d q = wall.segment.a + dir * (inset + (length - 2 * inset) * k / samples);
-      const Eigen::Vector2d ray = q - p;
-      if (ray.norm() > options.range_m) continue;
-      if (std::abs(geometry::WrapAngle(std::atan2(ray.y(), ray.x()) - yaw)) > half_fov) continue;
-      bool blocked = false;
-      for (const WallLine& other : walls) {
-        if (other.id != wall.id && Blocks(p, q, other.segment)) {
-          blocked = true;
-          break;
-        }
-      }
-      if (!blocked) return true;
-    }
+  for (const double t : WallSamples(wall, options)) {
+    if (PointSeenFrom(wall.segment.a + t * dir, wall, walls, poses, options)) return true;
   }
   return false;
 }
@@ -275,28 +372,32 @@ MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
       return x.first.overlap_m > y.first.overlap_m;
     });
     for (const auto& [c, id] : list) wm.mapped_ids.push_back(id);
+    const WallView view = ViewOf(tw, occluders, viewpoints, options.visibility);
+    const Coverage cover = CoverageOf(tw, list, mapped, view);
+    wm.visible_length_m = view.visible_length_m;
+    wm.mapped_length_m = cover.mapped_length_m;
+    wm.coverage = cover.fraction;
+    wm.mapped = cover.fraction >= kMappedCoverageMin;
     if (!list.empty()) {
       const Candidate& c = list.front().first;
       wm.normal_error_deg = c.angle_deg;
       wm.offset_error_m = c.offset_m;
       wm.overlap_m = c.overlap_m;
-      const auto it = std::find_if(mapped.begin(), mapped.end(),
-                                   [&](const WallLine& w) { return w.id == list.front().second; });
-      const Eigen::Vector2d dir = tw.segment.Direction();
-      const auto [t_lo, t_hi] = OrderedEnds(tw.segment, dir);
-      const auto [m_lo, m_hi] = OrderedEnds(it->segment, dir);
-      wm.endpoint_error_m[0] = (t_lo - m_lo).norm();
-      wm.endpoint_error_m[1] = (t_hi - m_hi).norm();
       normal_errors.push_back(wm.normal_error_deg);
       offset_errors.push_back(wm.offset_error_m);
-      endpoint_errors.push_back(wm.endpoint_error_m[0]);
-      endpoint_errors.push_back(wm.endpoint_error_m[1]);
-      ++m.walls_mapped;
+      // Each end seen against the fragments' outermost ends.
+      for (int end = 0; end < 2; ++end) {
+        if (!view.end_seen[end] && view.seen_any) continue;
+        wm.endpoint_error_m[end] = (cover.ends[end] - (end == 0 ? view.lo : view.hi)).norm();
+        endpoint_errors.push_back(wm.endpoint_error_m[end]);
+      }
       CountExtraMatches(tw, list, mapped, options.match, &m);
     }
-    wm.expected = !list.empty() || WallSeenFrom(tw, occluders, viewpoints, options.visibility);
+    if (wm.mapped) ++m.walls_mapped;
+    if (!list.empty() && !wm.mapped) ++m.partly_mapped;
+    wm.expected = !list.empty() || view.seen_any;
     if (wm.expected) ++m.expected_walls;
-    if (wm.expected && list.empty()) ++m.missed;
+    if (wm.expected && !wm.mapped) ++m.missed;
     m.walls.push_back(wm);
   }
   Summarise(normal_errors, &m.normal_error_deg);

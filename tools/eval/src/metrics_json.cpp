@@ -48,7 +48,8 @@ void WriteMap(JsonWriter& json, const MapMetrics& m) {
   json.Field("expected_walls", m.expected_walls).Field("mapped_planes", m.mapped_planes);
   json.Field("mapped_walls", m.mapped_walls);
   json.Field("mapped_without_extent", m.mapped_without_extent);
-  json.Field("walls_mapped", m.walls_mapped).Field("duplicates", m.duplicates);
+  json.Field("walls_mapped", m.walls_mapped).Field("partly_mapped", m.partly_mapped);
+  json.Field("duplicates", m.duplicates);
   json.Field("other_faces", m.other_faces).Field("fragments", m.fragments);
   json.Field("spurious", m.spurious);
   json.Field("on_short_walls", m.on_short_walls).Field("missed", m.missed);
@@ -62,6 +63,8 @@ void WriteMap(JsonWriter& json, const MapMetrics& m) {
     json.Key("mapped_ids").BeginArray();
     for (const int64_t id : w.mapped_ids) json.Value(id);
     json.EndArray();
+    json.Field("visible_length_m", w.visible_length_m).Field("mapped_length_m", w.mapped_length_m);
+    json.Field("coverage", w.coverage).Field("mapped", w.mapped);
     json.Field("normal_error_deg", w.normal_error_deg).Field("offset_error_m", w.offset_error_m);
     json.Key("endpoint_error_m").Vector(w.endpoint_error_m, 2);
     json.Field("overlap_m", w.overlap_m);

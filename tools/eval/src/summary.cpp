@@ -39,10 +39,11 @@ std::string FormatSummary(const RunMetrics& m) {
   if (map.has_truth) {
     s += Format(
         "  %-14s %lld planes, %lld walls; true walls mapped %lld/%lld expected (%lld true)"
-        "; duplicates %lld, other faces %lld, fragments %lld, spurious %lld, missed %lld\n",
+        "; duplicates %lld, other faces %lld, fragments %lld, spurious %lld, missed %lld"
+        " (%lld partly mapped)\n",
         "map", LL(map.mapped_planes), LL(map.mapped_walls), LL(map.walls_mapped),
         LL(map.expected_walls), LL(map.true_walls), LL(map.duplicates), LL(map.other_faces),
-        LL(map.fragments), LL(map.spurious), LL(map.missed));
+        LL(map.fragments), LL(map.spurious), LL(map.missed), LL(map.partly_mapped));
     s += Format("  %-14s normal max %s deg, offset max %s m, end point max %s m\n", "wall errors",
                 Num(map.normal_error_deg.max, "%.2f").c_str(), Num(map.offset_error_m.max).c_str(),
                 Num(map.endpoint_error_m.max).c_str());

@@ -36,14 +36,25 @@ double SensorHeight(const std::vector<PoseSample>& truth);
 bool SpansHeight(const WallLine& wall, double z);
 
 // The matching of one true wall.
+// A true wall counts as mapped when its matches cover at least this fraction of its visible
+// length: a plane over a few centimetres of a long wall does not map it.
+constexpr double kMappedCoverageMin = 0.5;
+
 struct WallMatch {
   int64_t true_id = 0;
   double length_m = 0.0;
-  bool expected = false;                      // seen from the truth trajectory, or matched
-  std::vector<int64_t> mapped_ids;            // every mapped plane matched to it, best first
-  double normal_error_deg = kNaN;             // of the best match
-  double offset_error_m = kNaN;               // best match's midpoint to the true line
-  double endpoint_error_m[2] = {kNaN, kNaN};  // true ends to the mapped ends, in wall order
+  bool expected = false;            // seen from the truth trajectory, or matched
+  std::vector<int64_t> mapped_ids;  // every mapped plane matched to it, best first
+  double visible_length_m = 0.0;    // seen from the truth trajectory
+  double mapped_length_m = 0.0;     // under the union of its matches
+  double coverage = 0.0;  // fraction of the visible length its matches cover (of the length
+                          // when no part was seen)
+  bool mapped = false;    // coverage >= kMappedCoverageMin
+  double normal_error_deg = kNaN;  // of the best match
+  double offset_error_m = kNaN;    // best match's midpoint to the true line
+  // True ends to the outermost ends of all its matches together, in wall order; NaN for an
+  // end the truth trajectory never saw.
+  double endpoint_error_m[2] = {kNaN, kNaN};
   double overlap_m = kNaN;
 };
 
@@ -59,7 +70,8 @@ struct MapMetrics {
   int64_t mapped_planes = 0;
   int64_t mapped_walls = 0;
   int64_t mapped_without_extent = 0;
-  int64_t walls_mapped = 0;  // true walls with at least one match
+  int64_t walls_mapped = 0;   // true walls covered over kMappedCoverageMin of their visible length
+  int64_t partly_mapped = 0;  // true walls with matches covering less (counted as missed too)
   // Extra matches covering part of the wall a better match facing the same way covers.
   int64_t duplicates = 0;
   // Extra matches covering only parts that better matches facing the other way cover: the
@@ -68,7 +80,7 @@ struct MapMetrics {
   int64_t fragments = 0;     // extra matches covering only parts no better match covers
   int64_t spurious = 0;      // mapped walls matching no true wall
   int64_t on_short_walls = 0;  // mapped walls on true walls too short to score (door jambs)
-  int64_t missed = 0;        // expected true walls without a match
+  int64_t missed = 0;        // expected true walls not mapped
   ErrorSummary normal_error_deg;
   ErrorSummary offset_error_m;
   ErrorSummary endpoint_error_m;
