@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "relplane/common/receive_buffer.hpp"
+
 namespace relplane {
 
 void AddServiceFlags(cli::Parser& parser, const std::string& section, ServiceStart* start) {
@@ -11,9 +13,11 @@ void AddServiceFlags(cli::Parser& parser, const std::string& section, ServiceSta
       "Check the `" + section + "` section of --config and exit (0, or 2 with the error)");
 }
 
-std::unique_ptr<bus::Bus> OpenServiceBus(const ServiceStart& start) {
+std::unique_ptr<bus::Bus> OpenServiceBus(const ServiceStart& start, Receives receives) {
+  std::string url = bus::ResolveUrl(start.flags.lcm_url);
+  if (receives == Receives::kClouds) url = bus::CloudBusUrl(url);
   try {
-    return bus::OpenLcmBus(bus::ResolveUrl(start.flags.lcm_url));
+    return bus::OpenLcmBus(url);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return nullptr;

@@ -25,11 +25,11 @@ int main(int argc, char** argv) {
     return *code;
   }
 
-  std::unique_ptr<bus::Bus> bus = OpenServiceBus(start);
+  std::unique_ptr<bus::Bus> bus = OpenServiceBus(start, Receives::kClouds);
   if (!bus) return 1;
   InstallStopHandlers();
   segmenter::SegmenterService service(*bus, options);
   service.Subscribe();
-  spdlog::info("listening on SENSOR_POINTS");
+  spdlog::info("listening on SENSOR_POINTS ({})", bus->Url());
   return RunService(*bus, service.Stats());
 }

@@ -17,6 +17,7 @@
 #include "bus_url.hpp"
 #include "child.hpp"
 #include "plan.hpp"
+#include "relplane/common/receive_buffer.hpp"
 
 namespace relplane::launch {
 
@@ -82,7 +83,8 @@ std::string ChooseRunDir(const Request& request, const std::string& name) {
 }
 
 std::string ChooseUrl(const Request& request) {
-  if (!request.lcm_url.empty()) return request.lcm_url;
+  // lcm-logger records SENSOR_POINTS: every bus of a run is a cloud bus.
+  if (!request.lcm_url.empty()) return bus::CloudBusUrl(request.lcm_url);
   const std::vector<int> bound = BoundUdpPorts(ReadProcNetUdp());
   const uint64_t seed =
       (static_cast<uint64_t>(getpid()) << 32) ^
@@ -90,9 +92,7 @@ std::string ChooseUrl(const Request& request) {
   const std::optional<int> port = ChoosePort(
       seed, [&](int p) { return std::find(bound.begin(), bound.end(), p) != bound.end(); });
   if (!port) throw SetupError("no free UDP port for the run's bus");
-  constexpr long kWantedReceiveBuffer = 16l << 20;  // a second of 640x480 clouds is larger still
-  const long rmem_max = ReceiveBufferMax();
-  return MakeUdpmUrl(*port, rmem_max > 0 ? std::min(rmem_max, kWantedReceiveBuffer) : 0);
+  return bus::CloudBusUrl(MakeUdpmUrl(*port, 0));
 }
 
 void CheckConfig(const std::vector<ServiceProgram>& services, const std::string& file,

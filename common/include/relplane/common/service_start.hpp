@@ -40,7 +40,10 @@ std::optional<int> LoadSectionOptions(const ServiceStart& start, const std::stri
 }
 
 // The bus of --lcm-url, else $LCM_DEFAULT_URL, else LCM's default; nullptr (reason logged)
-// when it cannot be opened.
-std::unique_ptr<bus::Bus> OpenServiceBus(const ServiceStart& start);
+// when it cannot be opened. A service that receives point clouds asks for a receive buffer
+// big enough for them (bus::CloudBusUrl).
+enum class Receives { kSmallMessages, kClouds };
+std::unique_ptr<bus::Bus> OpenServiceBus(const ServiceStart& start,
+                                         Receives receives = Receives::kSmallMessages);
 
 }  // namespace relplane
