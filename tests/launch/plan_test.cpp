@@ -1,6 +1,7 @@
 #include "plan.hpp"
 
 #include <gtest/gtest.h>
+#include <regex.h>
 #include <signal.h>
 #include <sys/wait.h>
 
@@ -65,6 +66,33 @@ TEST(RecorderCommandTest, UsesTheLongUrlFlag) {
   const ChildSpec recorder = RecorderCommand("/usr/bin/lcm-logger", "udpm://g:5", "/r");
   EXPECT_EQ(recorder.argv, (std::vector<std::string>{"/usr/bin/lcm-logger", "--lcm-url=udpm://g:5",
                                                      "--force", "--quiet", "/r/bus.lcmlog"}));
+}
+
+TEST(RecorderCommandTest, WithoutCloudsRecordsEveryChannelButSensorPoints) {
+  const ChildSpec recorder =
+      RecorderCommand("/usr/bin/lcm-logger", "udpm://g:5", "/r", kRecordWithoutClouds);
+  ASSERT_EQ(recorder.argv.size(), 6u);
+  EXPECT_EQ(recorder.argv[4], "--channel=" + EveryChannelBut("SENSOR_POINTS"));
+  EXPECT_EQ(recorder.argv[5], "/r/bus.lcmlog");
+}
+
+// As lcm-logger uses it: a POSIX extended expression anchored as ^...$.
+bool Matches(const std::string& expression, const std::string& name) {
+  regex_t regex;
+  EXPECT_EQ(regcomp(&regex, ("^" + expression + "$").c_str(), REG_EXTENDED | REG_NOSUB), 0);
+  const bool match = regexec(&regex, name.c_str(), 0, nullptr, 0) == 0;
+  regfree(&regex);
+  return match;
+}
+
+TEST(EveryChannelButTest, MatchesEveryNameButTheOne) {
+  const std::string expression = EveryChannelBut("SENSOR_POINTS");
+  EXPECT_FALSE(Matches(expression, "SENSOR_POINTS"));
+  for (const char* name : {"POSE", "MAP", "PLANES", "SIM_TRUTH", "SIM_WORLD", "STATUS", "ODOMETRY",
+                           "S", "SENSOR_POINT", "SENSOR_POINTS2", "SENSOR_POINTSX_Y", "XSENSOR_POINTS",
+                           "SENSOR_points"}) {
+    EXPECT_TRUE(Matches(expression, name)) << name;
+  }
 }
 
 TEST(DefaultRunDirTest, NameAndUtcTimestamp) {

@@ -169,12 +169,33 @@ TEST(ReadLaunchOptionsTest, RestartPolicyTyposAreOneLine) {
   EXPECT_EQ(error("  restrat: {max_restarts: 2}\n"),
             "s.yaml:3: unknown key 'launch.restrat' (did you mean 'restart'?)");
   EXPECT_NE(error("  restart: 3\n"), "");
+  EXPECT_EQ(error("  record: clouds\n"),
+            "s.yaml:3: key 'launch.record': 'clouds' is not one of all, without_clouds, nothing");
 }
 
 TEST(ScenarioNameTest, NameKeyElseStemMadeSafe) {
   EXPECT_EQ(ScenarioName(YAML::Load("name: hallway loop/2"), "a/b.yaml"), "hallway_loop_2");
   EXPECT_EQ(ScenarioName(YAML::Load("sim: {}"), "scenarios/office.yaml"), "office");
   EXPECT_EQ(ScenarioName(YAML::Load("name: ..."), "x.yaml"), "scenario...");
+}
+
+TEST(ResolveScenarioFileTest, AFileAsGivenABareNameFromTheProjectsScenarios) {
+  const std::string dir = std::string(RELPLANE_SOURCE_DIR) + "/scenarios";
+  EXPECT_EQ(ResolveScenarioFile("office", dir), dir + "/office.yaml");
+  const std::string file = WriteScenario("name: x\n");
+  EXPECT_EQ(ResolveScenarioFile(file, dir), file);
+  std::remove(file.c_str());
+  try {
+    ResolveScenarioFile("ofice", dir);
+    FAIL() << "a name that is no scenario";
+  } catch (const config::ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("ofice: no such scenario file (the project's: ", 0), 0u) << message;
+    EXPECT_NE(message.find("office, office_other_sensor"), std::string::npos) << message;
+  }
+  // A path or a file name is never looked up among the project's scenarios.
+  EXPECT_THROW(ResolveScenarioFile("./office", dir), config::ConfigError);
+  EXPECT_THROW(ResolveScenarioFile("office.yaml", dir), config::ConfigError);
 }
 
 TEST(ClosestKeyTest, OnlyCloseMatches) {

@@ -18,9 +18,13 @@
 #include "relplane/accuracy/sweep.hpp"
 #include "relplane/common/cli.hpp"
 #include "relplane/common/options.hpp"
+#include "scenario.hpp"
 
 namespace relplane::accuracy {
 namespace {
+
+// Where bare scenario names are looked up.
+const std::string kScenariosDir = std::string(RELPLANE_SOURCE_DIR) + "/scenarios";
 
 struct Flags {
   std::vector<std::string> scenarios;
@@ -43,25 +47,6 @@ std::string WriteFile(const std::string& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
   return out ? "" : "cannot write " + path;
-}
-
-// A scenario named without a path or .yaml is one of the project's (scenarios/NAME.yaml).
-std::string ResolveScenario(const std::string& name) {
-  if (std::ifstream(name).good()) return name;
-  if (name.find('/') == std::string::npos && name.find('.') == std::string::npos) {
-    const std::string own = std::string(RELPLANE_SOURCE_DIR) + "/scenarios/" + name + ".yaml";
-    if (std::ifstream(own).good()) return own;
-  }
-  std::string known;
-  const std::filesystem::path dir = std::filesystem::path(RELPLANE_SOURCE_DIR) / "scenarios";
-  std::error_code error;
-  std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
-    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-  throw config::ConfigError(name + ": no such scenario file (the project's: " + known + ")");
 }
 
 std::string StemOf(const std::string& file) {
@@ -126,7 +111,7 @@ int Main(int argc, char** argv) {
     if (f.sigma >= 0.0) base_overrides.push_back("sim.sensor.noise_sigma=" + std::to_string(f.sigma));
     if (f.laps > 0) base_overrides.push_back("sim.trajectory.laps=" + std::to_string(f.laps));
     for (const std::string& name : f.scenarios) {
-      const std::string file = ResolveScenario(name);
+      const std::string file = launch::ResolveScenarioFile(name, kScenariosDir);
       for (uint64_t seed : seeds) {
         RunSpec spec;
         spec.file = file;

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <regex>
 
 #include "bus_url.hpp"
 #include "overrides.hpp"
@@ -18,6 +19,7 @@
 #include "scenario.hpp"
 #include "setup.hpp"
 #include "supervisor.hpp"
+#include "verdict.hpp"
 
 namespace relplane::launch {
 namespace {
@@ -38,6 +40,9 @@ struct Cast {
   std::string bin_dir, lcm_logger, lcm_logplayer;
 };
 
+// Where bare scenario names (`office`) are looked up.
+const std::string kScenariosDir = std::string(RELPLANE_SOURCE_DIR) + "/scenarios";
+
 // With --replay the scenario defaults to the one the recorded run got, beside its log.
 void ResolveReplayDefaults(Request* request) {
   if (request->replay.empty()) return;
@@ -53,8 +58,9 @@ void ResolveReplayDefaults(Request* request) {
 
 // Top level and `launch` checked on the file as written (so lines point into it), then the
 // --set overrides applied and `launch` read from the result.
-Resolved ResolveScenario(const Request& request) {
+Resolved ResolveScenario(Request& request) {
   if (request.scenario.empty()) throw SetupError("a SCENARIO file is required (see --help)");
+  request.scenario = ResolveScenarioFile(request.scenario, kScenariosDir);
   const YAML::Node original = LoadScenario(request.scenario);
   const std::string original_text = ReadFile(request.scenario);
   ReadLaunchOptions(original_text, request.scenario);
@@ -115,7 +121,13 @@ void CheckWithServices(const Request& request, const Resolved& scenario, const C
   close(fd);
   try {
     WriteFile(temp, scenario.text);
-    CheckConfig(cast.checkers, temp, " (in the scenario after the --set overrides)");
+    CheckConfig(cast.checkers, temp, "");
+  } catch (const SetupError& e) {
+    unlink(temp);
+    // The services name the temporary file: name the scenario, whose key their message names.
+    const std::regex temp_file(std::string(temp) + "(:[0-9]+)*");
+    throw SetupError(std::regex_replace(e.what(), temp_file,
+                                        request.scenario + " (after the --set overrides)"));
   } catch (...) {
     unlink(temp);
     throw;
@@ -144,6 +156,42 @@ std::string MakeRunFolder(const Request& request, const Resolved& scenario) {
   return run_dir;
 }
 
+// The run's last line: its verdict. A run that completed exits 0 only when every expectation
+// held; a run without relplane-logger has no metrics and so no verdict.
+int Conclude(const Cast& cast, const std::string& run_dir, int code) {
+  if (code != kExitOk) {
+    Say(std::string(code == kExitInterrupted ? "interrupted" : "FAILED") + ": run folder " +
+        run_dir);
+    return code;
+  }
+  if (std::find(cast.services.begin(), cast.services.end(), "logger") == cast.services.end()) {
+    Say("done (no relplane-logger in the run: no verdict): run folder " + run_dir);
+    return kExitOk;
+  }
+  std::string metrics;
+  try {
+    metrics = ReadFile(run_dir + "/metrics.json");
+  } catch (const SetupError&) {
+  }
+  const Verdict verdict = VerdictOfMetrics(metrics);
+  Say(verdict.line + "; run folder " + run_dir);
+  switch (verdict.kind) {
+    case Verdict::Kind::kPass:
+    case Verdict::Kind::kNoExpectations:
+      return kExitOk;
+    case Verdict::Kind::kFail:
+      return kExitExpectationFailed;
+    case Verdict::Kind::kUnreadable:
+      break;
+  }
+  return kExitFailed;
+}
+
+// lcm-spy on the run's bus, as one line to paste into another terminal.
+std::string SpyCommand(const std::string& url) {
+  return "java -cp " RELPLANE_SPY_CLASSPATH " lcm.spy.Spy --lcm-url='" + url + "'";
+}
+
 int Run(const Request& request, const Resolved& scenario, const Cast& cast, const std::string& url,
         const std::string& run_dir) {
   setenv("LCM_DEFAULT_URL", url.c_str(), 1);  // for the children and anything they start
@@ -158,9 +206,11 @@ int Run(const Request& request, const Resolved& scenario, const Cast& cast, cons
     children.push_back(ReplayCommand(cast.lcm_logplayer, url, request.replay, request.speed));
     listed += (listed.empty() ? "" : ", ") + cast.source;
   }
+  const bool record = scenario.options.record != kRecordNothing;
   Say("scenario " + scenario.name + ": " + (listed.empty() ? "no services" : listed) +
-      " + lcm-logger");
+      (record ? " + lcm-logger (records " + scenario.options.record + ")" : ", nothing recorded"));
   Say("bus " + url);
+  Say("spy: " + SpyCommand(url));
   Say("run folder " + run_dir);
 
   SupervisorOptions supervision;
@@ -169,12 +219,10 @@ int Run(const Request& request, const Resolved& scenario, const Cast& cast, cons
   supervision.bus_port = PortOfUrl(url).value_or(-1);
   supervision.source = cast.source;
   supervision.restart = scenario.options.restart;
-  const int code = Supervise(RecorderCommand(cast.lcm_logger, url, run_dir), children, supervision);
-  const char* verdict = code == kExitOk            ? "done"
-                        : code == kExitInterrupted ? "interrupted"
-                                                   : "FAILED";
-  Say(std::string(verdict) + ": run folder " + run_dir);
-  return code;
+  std::optional<ChildSpec> recorder;
+  if (record) recorder = RecorderCommand(cast.lcm_logger, url, run_dir, scenario.options.record);
+  const int code = Supervise(recorder, children, supervision);
+  return Conclude(cast, run_dir, code);
 }
 
 int Launch(Request request) {

@@ -35,12 +35,29 @@ ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
   return spec;
 }
 
+std::string EveryChannelBut(const std::string& channel) {
+  // A name differs from `channel` at some first character, is a proper prefix of it, or
+  // extends it; an ERE cannot say "not", so each case is one alternative.
+  std::string alternatives;
+  const auto add = [&](const std::string& a) { alternatives += (alternatives.empty() ? "" : "|") + a; };
+  for (size_t k = 0; k < channel.size(); ++k) {
+    add(channel.substr(0, k) + "[^" + channel[k] + "].*");
+    if (k > 0) add(channel.substr(0, k));
+  }
+  add(channel + ".+");
+  return "(" + alternatives + ")";
+}
+
 ChildSpec RecorderCommand(const std::string& lcm_logger, const std::string& url,
-                          const std::string& run_dir) {
+                          const std::string& run_dir, const std::string& record) {
   // The long form: the short -l flag is broken in LCM 1.3.1 (DESIGN.md).
   // --quiet: its once-a-second summary would drown the services' output; errors still show.
-  return {"lcm-logger",
-          {lcm_logger, "--lcm-url=" + url, "--force", "--quiet", run_dir + "/bus.lcmlog"}};
+  ChildSpec recorder{"lcm-logger", {lcm_logger, "--lcm-url=" + url, "--force", "--quiet"}};
+  if (record == kRecordWithoutClouds) {
+    recorder.argv.push_back("--channel=" + EveryChannelBut("SENSOR_POINTS"));
+  }
+  recorder.argv.push_back(run_dir + "/bus.lcmlog");
+  return recorder;
 }
 
 ChildSpec ReplayCommand(const std::string& lcm_logplayer, const std::string& url,

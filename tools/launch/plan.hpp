@@ -37,9 +37,14 @@ ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
                          const std::string& run_dir, const LaunchOptions& options,
                          long iterations = -1);
 
-// The recorder: lcm-logger writing every channel of `url` to RUN/bus.lcmlog.
+// The recorder: lcm-logger writing the channels of `url` that `record` (LaunchOptions::record,
+// not kRecordNothing) asks for to RUN/bus.lcmlog.
 ChildSpec RecorderCommand(const std::string& lcm_logger, const std::string& url,
-                          const std::string& run_dir);
+                          const std::string& run_dir, const std::string& record = kRecordAll);
+
+// A POSIX extended regular expression matching every channel name but `channel` (lcm-logger's
+// --channel has no negation; LCM anchors it as ^...$).
+std::string EveryChannelBut(const std::string& channel);
 
 // lcm-logplayer playing `log` onto `url` at `speed` (1: as recorded), the simulator's channels.
 ChildSpec ReplayCommand(const std::string& lcm_logplayer, const std::string& url,

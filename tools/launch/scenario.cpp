@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -22,6 +23,19 @@ std::string Stem(const std::string& file) {
   std::string base = file.substr(file.find_last_of('/') + 1);
   const size_t dot = base.find_last_of('.');
   return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
+}
+
+// The project's scenario names, sorted, joined by ", ".
+std::string KnownScenarios(const std::string& dir) {
+  std::vector<std::string> names;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  std::string known;
+  for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+  return known;
 }
 
 // `launch.restart`; `services` are the run's services, to check the names against.
@@ -81,6 +95,17 @@ std::string ClosestKey(const std::string& key, const std::vector<std::string>& c
   return best;
 }
 
+std::string ResolveScenarioFile(const std::string& name, const std::string& scenarios_dir) {
+  if (std::ifstream(name).good()) return name;
+  const bool bare = name.find('/') == std::string::npos && name.find('.') == std::string::npos;
+  if (bare) {
+    const std::string own = scenarios_dir + "/" + name + ".yaml";
+    if (std::ifstream(own).good()) return own;
+  }
+  throw config::ConfigError(name + ": no such scenario file (the project's: " +
+                            KnownScenarios(scenarios_dir) + ")");
+}
+
 YAML::Node LoadScenario(const std::string& file) {
   const std::string text = ReadText(file);
   // The options loader parses the text and formats every message as FILE:LINE: key '...'.
@@ -115,6 +140,7 @@ LaunchOptions ReadLaunchOptions(const std::string& yaml_text, const std::string&
   reader.Read("grace_s", &options.grace_s);
   reader.Read("drain_s", &options.drain_s);
   reader.Read("rate_hz", &options.rate_hz);
+  reader.Read("record", &options.record);
   options.restart = ReadRestartPolicy(reader.Child("restart"), options.services);
   reader.Finish();
   for (size_t i = 0; i < options.services.size(); ++i) {
@@ -126,6 +152,11 @@ LaunchOptions ReadLaunchOptions(const std::string& yaml_text, const std::string&
         options.services.begin() + i) {
       reader.Fail("services", "'" + service + "' is listed twice");
     }
+  }
+  if (options.record != kRecordAll && options.record != kRecordWithoutClouds &&
+      options.record != kRecordNothing) {
+    reader.Fail("record", "'" + options.record + "' is not one of " + kRecordAll + ", " +
+                              kRecordWithoutClouds + ", " + kRecordNothing);
   }
   if (!(options.grace_s > 0.0)) reader.Fail("grace_s", "must be > 0");
   if (!(options.drain_s >= 0.0)) reader.Fail("drain_s", "must be >= 0");

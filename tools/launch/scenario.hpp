@@ -29,13 +29,24 @@ struct LaunchOptions {
   // Negative: the simulator's own rate.
   double rate_hz = -1.0;
   RestartPolicy restart;
+  // What lcm-logger records into RUN/bus.lcmlog: kRecordAll, kRecordWithoutClouds (every
+  // channel but SENSOR_POINTS, the bulk of the bytes) or kRecordNothing (no lcm-logger).
+  std::string record = "all";
 };
+
+inline const std::string kRecordAll = "all";
+inline const std::string kRecordWithoutClouds = "without_clouds";
+inline const std::string kRecordNothing = "nothing";
 
 // The top-level keys a scenario may hold.
 const std::vector<std::string>& TopLevelKeys();
 
 // The candidate closest to `key` when it is a likely typo of it (edit distance <= 2), else "".
 std::string ClosestKey(const std::string& key, const std::vector<std::string>& candidates);
+
+// `name` as given when it is a file; a bare name (no '/', no '.') is one of the project's,
+// `scenarios_dir`/NAME.yaml. Throws config::ConfigError naming the project's scenarios otherwise.
+std::string ResolveScenarioFile(const std::string& name, const std::string& scenarios_dir);
 
 // Loads a scenario file and checks its top level: a mapping whose keys are TopLevelKeys() and
 // whose `name`/`description` are strings. Throws config::ConfigError (one line naming file,

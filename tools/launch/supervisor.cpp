@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <optional>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -88,7 +89,7 @@ class Run {
  public:
   explicit Run(const SupervisorOptions& options) : options_(options) {}
 
-  int Execute(const ChildSpec& recorder, const std::vector<ChildSpec>& services);
+  int Execute(const std::optional<ChildSpec>& recorder, const std::vector<ChildSpec>& services);
 
  private:
   Child* Start(const ChildSpec& spec);
@@ -349,15 +350,15 @@ void Run::Sweep() {
   });
 }
 
-int Run::Execute(const ChildSpec& recorder, const std::vector<ChildSpec>& services) {
+int Run::Execute(const std::optional<ChildSpec>& recorder, const std::vector<ChildSpec>& services) {
   InstallHandlers();
   // Orphaned grandchildren are re-parented to the launcher, which then kills and reaps them.
   prctl(PR_SET_CHILD_SUBREAPER, 1);
-  name_width_ = recorder.name.size();
+  name_width_ = recorder ? recorder->name.size() : 0;
   for (const ChildSpec& spec : services) name_width_ = std::max(name_width_, spec.name.size());
 
   size_t subscribers = 0;
-  if (Start(recorder)) WaitForSubscribers(++subscribers);
+  if (recorder && Start(*recorder)) WaitForSubscribers(++subscribers);
   for (const ChildSpec& spec : services) {
     if (stopping_) break;
     if (spec.name == options_.source) {
@@ -393,7 +394,7 @@ void Say(const std::string& message) {
   std::fflush(stderr);
 }
 
-int Supervise(const ChildSpec& recorder, const std::vector<ChildSpec>& services,
+int Supervise(const std::optional<ChildSpec>& recorder, const std::vector<ChildSpec>& services,
               const SupervisorOptions& options) {
   return Run(options).Execute(recorder, services);
 }

@@ -2,6 +2,7 @@
 // Starts the processes of one run, passes their output on line by line with their names, and
 // stops them in order when the source finishes, a child dies, or the launcher is interrupted.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,11 +23,12 @@ struct SupervisorOptions {
 // Exit codes of a run.
 constexpr int kExitOk = 0;
 constexpr int kExitFailed = 1;         // a child failed, died unexpectedly or would not start
+constexpr int kExitExpectationFailed = 3;  // completed, but an `expect:` limit was not met
 constexpr int kExitInterrupted = 130;  // SIGINT/SIGTERM/SIGHUP to the launcher
 
-// Runs `recorder` then `services` (already in start order; options.source last)
+// Runs `recorder` (if any) then `services` (already in start order; options.source last)
 // and supervises them to the end. Returns one of the exit codes above. No child outlives it.
-int Supervise(const ChildSpec& recorder, const std::vector<ChildSpec>& services,
+int Supervise(const std::optional<ChildSpec>& recorder, const std::vector<ChildSpec>& services,
               const SupervisorOptions& options);
 
 // The launcher's own report lines ("[launch] ...", on stderr).
