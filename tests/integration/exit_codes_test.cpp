@@ -15,9 +15,17 @@ std::string Scenario() { return SourceDir() + "/scenarios/straight_hallway.yaml"
 
 // Ten frames of the simulator, scored by the real logger: no mapper, so no POSE.
 std::vector<std::string> ShortRun(const std::string& out, int port) {
-  return {Scenario(),  "--out",        out,       "--lcm-url",    TestBusUrl(port),
-          "--set",     "launch.services=[sim, logger]", "--set", "launch.rate_hz=0",
-          "--iterations", "10"};
+  return {Scenario(),
+          "--out",
+          out,
+          "--lcm-url",
+          TestBusUrl(port),
+          "--set",
+          "launch.services=[sim, logger]",
+          "--set",
+          "launch.rate_hz=0",
+          "--iterations",
+          "10"};
 }
 
 TEST(ExitCodes, AFailedExpectationExitsThreeNamingIt) {
@@ -27,7 +35,8 @@ TEST(ExitCodes, AFailedExpectationExitsThreeNamingIt) {
   std::string output;
   EXPECT_EQ(RunLauncher(args, 60, &output), 3) << output;
   EXPECT_NE(output.find("[launch] FAIL: 1 of 2 expectations failed: iterations_min 0 < 5; run "
-                        "folder " + dir.Path() + "/run"),
+                        "folder " +
+                        dir.Path() + "/run"),
             std::string::npos)
       << output;
   EXPECT_TRUE(Exists(dir.Path() + "/run/metrics.json"));
@@ -47,17 +56,17 @@ TEST(ExitCodes, AScenarioExpectingNothingExitsZeroWithoutVerdict) {
 TEST(ExitCodes, ASetErrorNamesTheScenarioAndTheKeyAndStartsNothing) {
   TempDir dir;
   std::string output;
-  EXPECT_EQ(RunLauncher({"straight_hallway", "--out", dir.Path() + "/run", "--lcm-url",
-                         TestBusUrl(47172), "--set", "launch.services=[sim, logger]", "--set",
-                         "sim.sensor.no_such_key=1"},
-                        60, &output),
-            2)
+  EXPECT_EQ(
+      RunLauncher({"straight_hallway", "--out", dir.Path() + "/run", "--lcm-url", TestBusUrl(47172),
+                   "--set", "launch.services=[sim, logger]", "--set", "sim.sensor.no_such_key=1"},
+                  60, &output),
+      2)
       << output;
   // A bare name is the project's scenario; the message points at it, not at a temporary file.
-  EXPECT_EQ(output.rfind(Scenario() +
-                             " (after the --set overrides): unknown key 'sim.sensor.no_such_key'",
-                         0),
-            0u)
+  EXPECT_EQ(
+      output.rfind(
+          Scenario() + " (after the --set overrides): unknown key 'sim.sensor.no_such_key'", 0),
+      0u)
       << output;
   EXPECT_EQ(output.find("/tmp/relplane-scenario"), std::string::npos) << output;
   EXPECT_FALSE(Exists(dir.Path() + "/run"));

@@ -33,12 +33,12 @@ std::map<std::string, int> ChannelCounts(const std::string& path) {
 std::string RunRecording(const TempDir& dir, const std::string& record, int port) {
   const std::string run = dir.Path() + "/run";
   std::string output;
-  EXPECT_EQ(RunLauncher({SourceDir() + "/scenarios/straight_hallway.yaml", "--out", run,
-                         "--lcm-url", TestBusUrl(port), "--set", "launch.services=[sim]", "--set",
-                         "launch.rate_hz=60", "--set", "launch.record=" + record, "--iterations",
-                         std::to_string(kIterations)},
-                        60, &output),
-            0)
+  EXPECT_EQ(
+      RunLauncher({SourceDir() + "/scenarios/straight_hallway.yaml", "--out", run, "--lcm-url",
+                   TestBusUrl(port), "--set", "launch.services=[sim]", "--set", "launch.rate_hz=60",
+                   "--set", "launch.record=" + record, "--iterations", std::to_string(kIterations)},
+                  60, &output),
+      0)
       << output;
   return run;
 }

@@ -88,9 +88,9 @@ bool Matches(const std::string& expression, const std::string& name) {
 TEST(EveryChannelButTest, MatchesEveryNameButTheOne) {
   const std::string expression = EveryChannelBut("SENSOR_POINTS");
   EXPECT_FALSE(Matches(expression, "SENSOR_POINTS"));
-  for (const char* name : {"POSE", "MAP", "PLANES", "SIM_TRUTH", "SIM_WORLD", "STATUS", "ODOMETRY",
-                           "S", "SENSOR_POINT", "SENSOR_POINTS2", "SENSOR_POINTSX_Y", "XSENSOR_POINTS",
-                           "SENSOR_points"}) {
+  for (const char* name :
+       {"POSE", "MAP", "PLANES", "SIM_TRUTH", "SIM_WORLD", "STATUS", "ODOMETRY", "S",
+        "SENSOR_POINT", "SENSOR_POINTS2", "SENSOR_POINTSX_Y", "XSENSOR_POINTS", "SENSOR_points"}) {
     EXPECT_TRUE(Matches(expression, name)) << name;
   }
 }

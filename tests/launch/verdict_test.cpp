@@ -41,8 +41,7 @@ TEST(VerdictTest, MissingOrForeignMetricsAreUnreadable) {
   EXPECT_EQ(VerdictOfMetrics("{\"expect\": []}").kind, Verdict::Kind::kUnreadable);
   EXPECT_EQ(VerdictOfMetrics("{\"schema\": \"relplane-metrics/1\"}").kind,
             Verdict::Kind::kUnreadable);
-  EXPECT_EQ(VerdictOfMetrics("{\"schema\": \"relplane-metrics/1\", \"expect\": [{\"key\": ")
-                .kind,
+  EXPECT_EQ(VerdictOfMetrics("{\"schema\": \"relplane-metrics/1\", \"expect\": [{\"key\": ").kind,
             Verdict::Kind::kUnreadable);
 }
 

@@ -74,6 +74,15 @@ TEST(Expectations, MaxAndMinLimitsAndMissingData) {
   EXPECT_TRUE(std::isnan(r[3].value));
 }
 
+// hallway_loop cannot observe its position along its featureless legs: it expects a large ATE.
+TEST(Expectations, AnUnobservableRunExpectsALargeAte) {
+  RunMetrics m;
+  m.trajectory.ate_rmse_m = 6.9;
+  EXPECT_TRUE(CheckExpectations({{"ate_rmse_min_m", 1.0}}, m)[0].pass);
+  m.trajectory.ate_rmse_m = 0.02;
+  EXPECT_FALSE(CheckExpectations({{"ate_rmse_min_m", 1.0}}, m)[0].pass);
+}
+
 TEST(Expectations, EveryKeyHasAMetric) {
   RunMetrics m;
   m.map.has_truth = true;

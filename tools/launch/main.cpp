@@ -126,8 +126,8 @@ void CheckWithServices(const Request& request, const Resolved& scenario, const C
     unlink(temp);
     // The services name the temporary file: name the scenario, whose key their message names.
     const std::regex temp_file(std::string(temp) + "(:[0-9]+)*");
-    throw SetupError(std::regex_replace(e.what(), temp_file,
-                                        request.scenario + " (after the --set overrides)"));
+    throw SetupError(
+        std::regex_replace(e.what(), temp_file, request.scenario + " (after the --set overrides)"));
   } catch (...) {
     unlink(temp);
     throw;

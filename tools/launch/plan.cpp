@@ -39,7 +39,9 @@ std::string EveryChannelBut(const std::string& channel) {
   // A name differs from `channel` at some first character, is a proper prefix of it, or
   // extends it; an ERE cannot say "not", so each case is one alternative.
   std::string alternatives;
-  const auto add = [&](const std::string& a) { alternatives += (alternatives.empty() ? "" : "|") + a; };
+  const auto add = [&](const std::string& a) {
+    alternatives += (alternatives.empty() ? "" : "|") + a;
+  };
   for (size_t k = 0; k < channel.size(); ++k) {
     add(channel.substr(0, k) + "[^" + channel[k] + "].*");
     if (k > 0) add(channel.substr(0, k));

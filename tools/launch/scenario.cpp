@@ -102,8 +102,8 @@ std::string ResolveScenarioFile(const std::string& name, const std::string& scen
     const std::string own = scenarios_dir + "/" + name + ".yaml";
     if (std::ifstream(own).good()) return own;
   }
-  throw config::ConfigError(name + ": no such scenario file (the project's: " +
-                            KnownScenarios(scenarios_dir) + ")");
+  throw config::ConfigError(
+      name + ": no such scenario file (the project's: " + KnownScenarios(scenarios_dir) + ")");
 }
 
 YAML::Node LoadScenario(const std::string& file) {

@@ -69,8 +69,8 @@ EvalConfig LoadEvalConfig(const std::string& file) {
 
 EvalConfig ParseEvalConfig(const std::string& yaml, const std::string& name) {
   EvalConfig c;
-  c.options = ReadOptions(config::Reader::FromString(yaml, name, "logger"),
-                          SensorVisibility(yaml, name));
+  c.options =
+      ReadOptions(config::Reader::FromString(yaml, name, "logger"), SensorVisibility(yaml, name));
   c.expect = ReadExpect(config::Reader::FromString(yaml, name, "expect"));
   return c;
 }

@@ -168,8 +168,8 @@ WallView ViewOf(const WallLine& wall, const std::vector<WallLine>& occluders,
   view.hi = wall.segment.b;
   view.along = WallSamples(wall, options);
   for (const double t : view.along) {
-    view.seen.push_back(PointSeenFrom(wall.segment.a + t * dir, wall, occluders, viewpoints,
-                                      options));
+    view.seen.push_back(
+        PointSeenFrom(wall.segment.a + t * dir, wall, occluders, viewpoints, options));
   }
   const size_t n = view.seen.size();
   view.seen_any = std::find(view.seen.begin(), view.seen.end(), true) != view.seen.end();
@@ -187,9 +187,9 @@ WallView ViewOf(const WallLine& wall, const std::vector<WallLine>& occluders,
 }
 
 struct Coverage {
-  double mapped_length_m = 0.0;       // of the wall, under the union of its matches
-  double fraction = 0.0;              // of the visible part (of the whole wall when none seen)
-  Eigen::Vector2d ends[2];            // the matches' outermost ends, in the wall's direction
+  double mapped_length_m = 0.0;  // of the wall, under the union of its matches
+  double fraction = 0.0;         // of the visible part (of the whole wall when none seen)
+  Eigen::Vector2d ends[2];       // the matches' outermost ends, in the wall's direction
 };
 
 // How much of a true wall its matches cover, all fragments together (§ docs/run-folder.md).
@@ -345,10 +345,9 @@ MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
     }
     if (best < 0) {
       // A mapped jamb where a jamb is is not spurious, only not scored.
-      const bool on_short_wall = std::any_of(short_walls.begin(), short_walls.end(),
-                                             [&](const WallLine& s) {
-                                               return Compare(s, w, options.match).ok;
-                                             });
+      const bool on_short_wall =
+          std::any_of(short_walls.begin(), short_walls.end(),
+                      [&](const WallLine& s) { return Compare(s, w, options.match).ok; });
       if (on_short_wall) {
         ++m.on_short_walls;
       } else if (m.has_truth) {

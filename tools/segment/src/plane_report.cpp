@@ -50,8 +50,7 @@ std::string PlaneTable(const FramePlanes& frame) {
     const segmenter::DetectedPlane& p = frame.planes[k];
     const Eigen::Vector2f size = ExtentSize(p);
     s += Format("%4zu  %9.4f  %9.4f  %9.4f  %8.4f  %8d  %8.1f  %.2f x %.2f\n", k, p.normal.x(),
-                p.normal.y(), p.normal.z(), p.d, p.num_points, 1000.0 * p.rms, size.x(),
-                size.y());
+                p.normal.y(), p.normal.z(), p.d, p.num_points, 1000.0 * p.rms, size.x(), size.y());
   }
   return s;
 }

@@ -95,9 +95,8 @@ void Panel(std::ostream& svg, const LabelledFrame& lf, double ox, int index, dou
     const Eigen::Vector2f size = ExtentSize(p);
     char line[200];
     std::snprintf(line, sizeof line,
-                  "n=(%.2f, %.2f, %.2f) d=%.2f m, %d pts, rms %.1f mm, %.2f x %.2f m",
-                  p.normal.x(), p.normal.y(), p.normal.z(), p.d, p.num_points, p.rms * 1000,
-                  size.x(), size.y());
+                  "n=(%.2f, %.2f, %.2f) d=%.2f m, %d pts, rms %.1f mm, %.2f x %.2f m", p.normal.x(),
+                  p.normal.y(), p.normal.z(), p.d, p.num_points, p.rms * 1000, size.x(), size.y());
     svg << "<rect x='0' y='" << h + 8 + 16 * k << "' width='12' height='12' fill='"
         << Colour(static_cast<int>(k)) << "'/><text x='18' y='" << h + 18 + 16 * k
         << "' font-size='12'>" << line << "</text>\n";

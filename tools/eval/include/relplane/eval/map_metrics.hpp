@@ -77,10 +77,10 @@ struct MapMetrics {
   // Extra matches covering only parts that better matches facing the other way cover: the
   // wall's other face.
   int64_t other_faces = 0;
-  int64_t fragments = 0;     // extra matches covering only parts no better match covers
-  int64_t spurious = 0;      // mapped walls matching no true wall
+  int64_t fragments = 0;       // extra matches covering only parts no better match covers
+  int64_t spurious = 0;        // mapped walls matching no true wall
   int64_t on_short_walls = 0;  // mapped walls on true walls too short to score (door jambs)
-  int64_t missed = 0;        // expected true walls not mapped
+  int64_t missed = 0;          // expected true walls not mapped
   ErrorSummary normal_error_deg;
   ErrorSummary offset_error_m;
   ErrorSummary endpoint_error_m;
