@@ -91,10 +91,20 @@ bool Decode(const uint8_t* data, size_t size, M* out, std::string* reason,
   return true;
 }
 
+// Readies a message kept from one delivery to the next for decoding. lcm-gen's decoder leaves an
+// array untouched when its declared length is 0, so the previous message's elements would stay:
+// by default a fresh message; a point cloud (the one large message) has its arrays emptied,
+// keeping their capacity.
+template <class M>
+void ResetForDecode(M* message) {
+  *message = M();
+}
+void ResetForDecode(point_cloud_t* message);
+
 // Typed subscription: `on_message` gets each decoded message; `on_reject` gets the reason for
 // every message that could not be decoded. Messages are decoded into one object kept by the
-// subscription, whose arrays keep their capacity from message to message (no allocation per
-// message in steady state): `on_message` may modify it (e.g. swap its arrays out) but must not
+// subscription (ResetForDecode: a cloud's arrays keep their capacity, so no allocation per
+// cloud in steady state): `on_message` may modify it (e.g. swap its arrays out) but must not
 // keep a reference to it.
 template <class M>
 void Subscribe(Bus& bus, const std::string& channel, std::function<void(M&)> on_message,
@@ -106,6 +116,7 @@ void Subscribe(Bus& bus, const std::string& channel, std::function<void(M&)> on_
       [on_message = std::move(on_message), on_reject = std::move(on_reject), max_bytes,
        message = std::make_shared<M>()](const std::string&, const uint8_t* data, size_t size) {
         std::string reason;
+        ResetForDecode(message.get());
         if (Decode(data, size, message.get(), &reason, max_bytes)) {
           on_message(*message);
         } else {
