@@ -1,5 +1,7 @@
 #include "relplane/common/encoded_lengths.hpp"
 
+#include <relplane/point_cloud_t.hpp>
+
 namespace relplane::bus {
 namespace {
 
@@ -126,6 +128,13 @@ bool CheckEncodedLengths(const map_t*, const uint8_t* data, size_t size, std::st
     }
   }
   return true;
+}
+
+void ResetForDecode(point_cloud_t* message) {
+  message->num_points = 0;
+  message->x.clear();
+  message->y.clear();
+  message->z.clear();
 }
 
 }  // namespace relplane::bus

@@ -55,6 +55,10 @@ std::string ResolveUrl(const std::string& flag) {
   return env != nullptr ? std::string(env) : std::string();
 }
 
+std::string ResolveCloudUrl(const std::string& flag, const std::string& main_url) {
+  return flag.empty() ? main_url : flag;
+}
+
 std::unique_ptr<Bus> OpenLcmBus(const std::string& url) { return std::make_unique<LcmBus>(url); }
 
 }  // namespace relplane::bus

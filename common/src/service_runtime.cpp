@@ -57,18 +57,23 @@ void PublishStatus(bus::Bus& bus, ServiceStats& stats) {
 
 int RunService(bus::Bus& bus, ServiceStats& stats, const std::function<bool()>& done,
                const std::function<void()>& on_idle) {
+  return RunService(bus, bus, stats, done, on_idle);
+}
+
+int RunService(bus::Bus& listen, bus::Bus& report, ServiceStats& stats,
+               const std::function<bool()>& done, const std::function<void()>& on_idle) {
   int64_t next_status = MonotonicMicros() + 1000000;
   int result = 0;
   while (!StopRequested() && !(done && done())) {
     // A stop signal interrupts the wait (EINTR) and fails Handle: that is a stop, not an error.
-    if (bus.Handle(100) < 0 && !StopRequested()) {
+    if (listen.Handle(100) < 0 && !StopRequested()) {
       spdlog::error("the LCM bus failed; stopping");
       result = 1;
       break;
     }
     if (on_idle) on_idle();
     if (MonotonicMicros() >= next_status) {
-      PublishStatus(bus, stats);
+      PublishStatus(report, stats);
       next_status += 1000000;
     }
   }
@@ -79,10 +84,10 @@ int RunService(bus::Bus& bus, ServiceStats& stats, const std::function<bool()>& 
   if (result == 0) {
     const int64_t give_up = MonotonicMicros() + kDrainMaxUs;
     // LCM's reader thread moves datagrams from the socket to its queue: wait briefly for each.
-    while (MonotonicMicros() < give_up && bus.Handle(kDrainQuietMs) > 0) {
+    while (MonotonicMicros() < give_up && listen.Handle(kDrainQuietMs) > 0) {
     }
   }
-  PublishStatus(bus, stats);
+  PublishStatus(report, stats);
   spdlog::info("stopping: {} processed, {} dropped, {} rejected", stats.Processed(),
                stats.Dropped(), stats.Rejected());
   return result;

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <chrono>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -198,9 +199,24 @@ bool ReadJournal(const std::string& path, JournalContents* contents, std::string
 }
 
 JournalWriter::~JournalWriter() {
+  if (syncer_.joinable()) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_one();
+    syncer_.join();
+  }
   if (fd_ >= 0) {
     fdatasync(fd_);
     close(fd_);
+  }
+}
+
+void JournalWriter::SyncLoop() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!wake_.wait_for(lock, std::chrono::microseconds(kSyncPeriodUs), [this] { return stop_; })) {
+    fdatasync(fd_);
   }
 }
 
@@ -214,10 +230,11 @@ bool JournalWriter::Open(const std::string& path, size_t keep_bytes, std::string
     return false;
   }
   bytes_ = static_cast<int64_t>(keep_bytes);
+  syncer_ = std::thread([this] { SyncLoop(); });
   return true;
 }
 
-bool JournalWriter::Append(const JournalRecord& record, int64_t now_us, std::string* error) {
+bool JournalWriter::Append(const JournalRecord& record, std::string* error) {
   const std::vector<uint8_t> bytes = EncodeRecord(record);
   size_t done = 0;
   while (done < bytes.size()) {
@@ -232,10 +249,6 @@ bool JournalWriter::Append(const JournalRecord& record, int64_t now_us, std::str
     done += static_cast<size_t>(n);
   }
   bytes_ += static_cast<int64_t>(bytes.size());
-  if (now_us - last_sync_us_ >= kSyncPeriodUs) {
-    fdatasync(fd_);
-    last_sync_us_ = now_us;
-  }
   return true;
 }
 

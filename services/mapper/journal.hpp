@@ -5,8 +5,11 @@
 // (little-endian), in one write, so a kill -9 leaves at most one torn record at the end. On
 // start the journal is replayed through a fresh Mapper; a torn or corrupt tail is cut off.
 
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "relplane/mapper/observation.hpp"
@@ -53,13 +56,21 @@ class JournalWriter {
   bool Open(const std::string& path, size_t keep_bytes, std::string* error);
   bool IsOpen() const { return fd_ >= 0; }
   // False with *error when the write fails (disk full, ...): the record is not in the journal.
-  bool Append(const JournalRecord& record, int64_t now_us, std::string* error);
+  // A written record survives the process being killed (the page cache has it); a thread of
+  // the writer's own flushes it to the disk once a second, so a slow disk never stalls the
+  // caller (the mapper's bus loop).
+  bool Append(const JournalRecord& record, std::string* error);
   int64_t BytesWritten() const { return bytes_; }
 
  private:
+  void SyncLoop();
+
   int fd_ = -1;
   int64_t bytes_ = 0;
-  int64_t last_sync_us_ = 0;
+  std::thread syncer_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
   static constexpr int64_t kSyncPeriodUs = 1000000;
 };
 

@@ -37,7 +37,7 @@ void MapperService::OnPlanes(const plane_set_t& msg) {
   stats_.Processed(static_cast<double>(MonotonicMicros() - t0) / 1000.0);
   bus::Publish(bus_, "POSE", ToPoseMessage(estimate, mapper_.Height(), msg.utime, msg.seq));
   // After Process: an input that crashes the mapper is not replayed into the next crash. After
-  // POSE: the journal's periodic fdatasync stays off the pose's latency.
+  // POSE: the journal write stays off the pose's latency.
   Journal(msg.seq, std::move(planes));
   if (mapper_.TakeMapChanged()) map_pending_ = true;
   last_utime_ = msg.utime;
@@ -99,7 +99,7 @@ void MapperService::Journal(int64_t seq, std::vector<PlaneInput> planes) {
   if (!journal_.IsOpen()) return;
   std::string error;
   const JournalRecord record{seq, std::move(planes)};
-  if (!journal_.Append(record, MonotonicMicros(), &error)) {
+  if (!journal_.Append(record, &error)) {
     stats_.Rejected("checkpoint: " + error);  // counted and said; mapping goes on
   }
 }

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   cli::Parser parser{"relplane-segmenter: EM plane segmentation (SENSOR_POINTS -> PLANES)"};
   ServiceStart start;
   AddServiceFlags(parser, "segmenter", &start);
+  AddCloudUrlFlag(parser, &start);
   if (const auto code = parser.Parse(argc, argv)) return *code;
 
   segmenter::ServiceOptions options;
@@ -25,11 +26,13 @@ int main(int argc, char** argv) {
     return *code;
   }
 
-  std::unique_ptr<bus::Bus> bus = OpenServiceBus(start, Receives::kClouds);
-  if (!bus) return 1;
+  std::optional<ServiceBuses> buses = OpenServiceBuses(start);
+  if (!buses) return 1;
   InstallStopHandlers();
-  segmenter::SegmenterService service(*bus, options);
+  segmenter::SegmenterService service(buses->Cloud(), *buses->main, options);
   service.Subscribe();
-  spdlog::info("listening on SENSOR_POINTS ({})", bus->Url());
-  return RunService(*bus, service.Stats());
+  spdlog::info("listening on SENSOR_POINTS{}",
+               buses->cloud ? " (cloud bus " + buses->cloud->Url() + ")" : std::string());
+  // Only the cloud bus is read: the main bus, written to, never delivers its traffic here.
+  return RunService(buses->Cloud(), *buses->main, service.Stats());
 }

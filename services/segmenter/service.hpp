@@ -3,6 +3,7 @@
 // input is counted and logged through ServiceStats, never a crash.
 
 #include <cstdint>
+#include <relplane/plane_set_t.hpp>
 #include <relplane/point_cloud_t.hpp>
 
 #include "options_yaml.hpp"
@@ -14,19 +15,27 @@ namespace relplane::segmenter {
 
 class SegmenterService {
  public:
+  // Clouds and planes on one bus.
   SegmenterService(bus::Bus& bus, ServiceOptions options);
+  // SENSOR_POINTS read on `clouds`, PLANES published on `out`.
+  SegmenterService(bus::Bus& clouds, bus::Bus& out, ServiceOptions options);
 
-  // Subscribes SENSOR_POINTS on the bus given to the constructor.
+  // Subscribes SENSOR_POINTS on the cloud bus given to the constructor.
   void Subscribe();
-  void OnCloud(const point_cloud_t& msg);
+  // Takes the message's arrays (they come back with the previous frame's capacity).
+  void OnCloud(point_cloud_t& msg);
   ServiceStats& Stats() { return stats_; }
 
  private:
-  bus::Bus& bus_;
+  bus::Bus& clouds_;
+  bus::Bus& out_;
   ServiceStats stats_;
   int64_t max_points_;
   Segmenter segmenter_;
   int64_t nonfinite_total_ = 0;
+  // Kept from frame to frame so that steady state allocates no cloud or message arrays.
+  Cloud cloud_;
+  plane_set_t planes_msg_;
 };
 
 }  // namespace relplane::segmenter

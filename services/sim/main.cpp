@@ -1,6 +1,6 @@
 // relplane-sim: moves a depth sensor through the scenario's world and publishes, per
-// iteration, its point cloud (SENSOR_POINTS) and true pose (SIM_TRUTH); the true world
-// (SIM_WORLD) at start and once a second. Exits 0 when the trajectory ends.
+// iteration, its point cloud (SENSOR_POINTS, on --cloud-url when given) and true pose
+// (SIM_TRUTH); the true world (SIM_WORLD) at start and once a second. Exits 0 when the trajectory ends.
 
 #include <spdlog/spdlog.h>
 
@@ -39,7 +39,7 @@ void Publish(bus::Bus& bus, ServiceStats& stats, const std::string& channel, con
 }
 
 int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double rate,
-        int64_t iterations, bus::Bus& bus) {
+        int64_t iterations, bus::Bus& bus, bus::Bus& cloud_bus) {
   ServiceStats stats("relplane-sim", kBudgetMs);
   const map_t world_template = sim::ToWorldMap(simulation.TruePlanes(), 0, 0);
   const int64_t total = iterations >= 0 ? std::min(iterations, simulation.NumIterations())
@@ -76,7 +76,7 @@ int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double 
       stats.SetDetail(fmt::format("dropped {} of {} SENSOR_POINTS (drop_fraction {})",
                                   stats.Dropped(), k + 1, options.drop_fraction));
     } else {
-      Publish(bus, stats, "SENSOR_POINTS", cloud);
+      Publish(cloud_bus, stats, "SENSOR_POINTS", cloud);
     }
     Publish(bus, stats, "SIM_TRUTH", sim::ToTruthPose(simulation.SensorPose(k), k, utime));
     if (MonotonicMicros() >= next_progress) {
@@ -99,6 +99,7 @@ int main(int argc, char** argv) {
   cli::Parser parser{"relplane-sim: simulated depth sensor in a world of rectangles"};
   ServiceStart start;
   AddServiceFlags(parser, "sim", &start);
+  AddCloudUrlFlag(parser, &start);
   double rate = -1.0;
   int64_t iterations = -1;
   parser
@@ -117,8 +118,8 @@ int main(int argc, char** argv) {
   if (rate < 0.0) rate = options.sim.rate_hz;
 
   sim::Simulation simulation(options.sim);
-  std::unique_ptr<bus::Bus> bus = OpenServiceBus(start);
-  if (!bus) return 1;
+  std::optional<ServiceBuses> buses = OpenServiceBuses(start);
+  if (!buses) return 1;
   InstallStopHandlers();
-  return Run(simulation, options, rate, iterations, *bus);
+  return Run(simulation, options, rate, iterations, *buses->main, buses->Cloud());
 }

@@ -47,5 +47,15 @@ TEST(ProcessCpu, OwnProcessUsesCpuWhileItWorks) {
   EXPECT_FALSE(ProcessCpuSeconds(-1).has_value());
 }
 
+TEST(MachineCpu, BusyIsEverythingButIdleAndIowait) {
+  // user 100, nice 10, system 40, idle 900, iowait 50, irq 5, softirq 5, steal 40 ticks.
+  const std::string stat = "cpu  100 10 40 900 50 5 5 40 0 0\ncpu0 50 5 20 450 25 2 3 20 0 0\n";
+  EXPECT_DOUBLE_EQ(ParseMachineBusySeconds(stat, 100).value(), 2.0);
+  EXPECT_FALSE(ParseMachineBusySeconds("intr 1 2 3\n", 100).has_value());
+  EXPECT_FALSE(ParseMachineBusySeconds("cpu 1 2\n", 100).has_value());
+  EXPECT_TRUE(MachineBusySeconds().has_value());
+  EXPECT_GE(LoadAverage(), 0.0);
+}
+
 }  // namespace
 }  // namespace relplane::bench

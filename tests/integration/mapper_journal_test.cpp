@@ -118,8 +118,8 @@ TEST(MapperJournal, WriterAppendsAfterTheIntactRecords) {
   {
     JournalWriter writer;
     ASSERT_TRUE(writer.Open(path, 0, &error)) << error;
-    ASSERT_TRUE(writer.Append(Frame(0), 0, &error));
-    ASSERT_TRUE(writer.Append(Frame(1), 1, &error));
+    ASSERT_TRUE(writer.Append(Frame(0), &error));
+    ASSERT_TRUE(writer.Append(Frame(1), &error));
   }
   {  // a torn third record, as a kill -9 in the middle of a write would leave
     std::vector<uint8_t> torn = EncodeRecord(Frame(2));
@@ -133,7 +133,7 @@ TEST(MapperJournal, WriterAppendsAfterTheIntactRecords) {
   {
     JournalWriter writer;
     ASSERT_TRUE(writer.Open(path, c.valid_bytes, &error)) << error;
-    ASSERT_TRUE(writer.Append(Frame(3), 2, &error));
+    ASSERT_TRUE(writer.Append(Frame(3), &error));
   }
   ASSERT_TRUE(ReadJournal(path, &c, &error)) << error;
   ASSERT_EQ(c.records.size(), 3u);

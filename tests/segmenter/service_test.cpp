@@ -148,6 +148,60 @@ TEST_F(ServiceOnMemq, OversizeTruncatedAndForeignMessagesAreRejectedAndTheServic
   EXPECT_EQ(planes_[0].seq, 2);
 }
 
+// The subscription decodes every cloud into one message and the service swaps its arrays into
+// one cloud: a large frame after a small one (and the reverse) must not see the other's points.
+TEST_F(ServiceOnMemq, CloudsOfChangingSizeGiveTheSamePlanesAsEachAlone) {
+  SegmenterService service(*bus_, ServiceOptions{});
+  service.Subscribe();
+  testing::Sensor sensor;
+  const Cloud office = testing::Render(testing::Office(), sensor).cloud;
+  Cloud half = office;
+  half.x.resize(office.size() / 2);
+  half.y.resize(office.size() / 2);
+  half.z.resize(office.size() / 2);
+  const Cloud order[] = {office, half, Cloud{}, office, half};
+  for (int64_t seq = 0; seq < 5; ++seq) bus::Publish(*bus_, "SENSOR_POINTS", Message(order[seq], seq));
+  Drain();
+  ASSERT_EQ(planes_.size(), 5u);
+  auto same = [](const plane_set_t& a, const plane_set_t& b) {
+    if (a.num_planes != b.num_planes) return false;
+    for (int k = 0; k < a.num_planes; ++k) {
+      if (a.planes[k].num_points != b.planes[k].num_points || a.planes[k].d != b.planes[k].d ||
+          a.planes[k].vertices != b.planes[k].vertices) {
+        return false;
+      }
+    }
+    return true;
+  };
+  EXPECT_TRUE(same(planes_[0], planes_[3]));
+  EXPECT_TRUE(same(planes_[1], planes_[4]));
+  EXPECT_EQ(planes_[2].num_planes, 0);
+  EXPECT_GE(planes_[0].num_planes, 5);
+}
+
+// Clouds read on one bus, planes published on another (the launcher's cloud bus): the cloud
+// bus carries no PLANES and the main bus no clouds.
+TEST(ServiceOnTwoBuses, ReadsCloudsOnTheCloudBusAndPublishesPlanesOnTheMainBus) {
+  auto clouds = bus::OpenLcmBus("memq://");
+  auto main_bus = bus::OpenLcmBus("memq://");
+  int planes_on_main = 0, planes_on_clouds = 0;
+  bus::Subscribe<plane_set_t>(
+      *main_bus, "PLANES", [&](const plane_set_t&) { ++planes_on_main; }, [](const std::string&) {});
+  bus::Subscribe<plane_set_t>(
+      *clouds, "PLANES", [&](const plane_set_t&) { ++planes_on_clouds; }, [](const std::string&) {});
+  SegmenterService service(*clouds, *main_bus, ServiceOptions{});
+  service.Subscribe();
+  testing::Sensor sensor;
+  const Cloud cloud = testing::Render(testing::Office(), sensor).cloud;
+  bus::Publish(*main_bus, "SENSOR_POINTS", Message(cloud, 0));  // not the cloud bus: ignored
+  bus::Publish(*clouds, "SENSOR_POINTS", Message(cloud, 1));
+  while (clouds->Handle(20) > 0 || main_bus->Handle(20) > 0) {
+  }
+  EXPECT_EQ(service.Stats().Processed(), 1);
+  EXPECT_EQ(planes_on_main, 1);
+  EXPECT_EQ(planes_on_clouds, 0);
+}
+
 TEST(Convert, MismatchedArraysAreRefused) {
   point_cloud_t msg{};
   msg.num_points = 3;
@@ -158,6 +212,8 @@ TEST(Convert, MismatchedArraysAreRefused) {
   std::string reason;
   EXPECT_FALSE(FromPointCloud(msg, &c, &reason));
   EXPECT_NE(reason.find("num_points 3"), std::string::npos);
+  EXPECT_FALSE(TakePointCloud(&msg, &c, &reason));
+  EXPECT_EQ(msg.x.size(), 3u);  // refused: nothing taken
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <regex>
 
 #include "bus_url.hpp"
+#include "log_merge.hpp"
 #include "overrides.hpp"
 #include "plan.hpp"
 #include "relplane/common/cli.hpp"
@@ -135,13 +136,36 @@ void CheckWithServices(const Request& request, const Resolved& scenario, const C
   unlink(temp);
 }
 
-std::string ChooseBus(const Request& request) {
-  const std::string url = ChooseUrl(request);
-  if (url.rfind("udpm://", 0) == 0 && !HasMulticastRoute()) {
-    throw SetupError(
-        "no multicast route for the udpm bus: as root, ip route add 224.0.0.0/4 dev lo");
+// The run's main bus and its cloud bus (SENSOR_POINTS alone; may be the main bus).
+struct Buses {
+  std::string url, cloud_url;
+};
+
+Buses ChooseBuses(const Request& request) {
+  Buses buses;
+  buses.url = ChooseUrl(request);
+  buses.cloud_url = ChooseCloudUrl(request, buses.url);
+  for (const std::string& url : {buses.url, buses.cloud_url}) {
+    if (url.rfind("udpm://", 0) == 0 && !HasMulticastRoute()) {
+      throw SetupError(
+          "no multicast route for the udpm bus: as root, ip route add 224.0.0.0/4 dev lo");
+    }
   }
-  return url;
+  return buses;
+}
+
+// One bus.lcmlog holding every channel: the cloud recorder's log merged into it.
+void MergeCloudLog(const std::string& run_dir) {
+  const std::string log = run_dir + "/bus.lcmlog", clouds = run_dir + "/" + kCloudLog;
+  const std::string merged = log + ".merging";
+  std::string reason;
+  if (!MergeLogs(log, clouds, merged, &reason) || std::rename(merged.c_str(), log.c_str()) != 0) {
+    std::remove(merged.c_str());
+    Say("warning: could not merge " + kCloudLog + " into bus.lcmlog (" + reason +
+        "): the clouds stay in " + clouds);
+    return;
+  }
+  std::remove(clouds.c_str());
 }
 
 std::string MakeRunFolder(const Request& request, const Resolved& scenario) {
@@ -192,36 +216,55 @@ std::string SpyCommand(const std::string& url) {
   return "java -cp " RELPLANE_SPY_CLASSPATH " lcm.spy.Spy --lcm-url='" + url + "'";
 }
 
-int Run(const Request& request, const Resolved& scenario, const Cast& cast, const std::string& url,
+int Run(const Request& request, const Resolved& scenario, const Cast& cast, const Buses& buses,
         const std::string& run_dir) {
+  const std::string& url = buses.url;
   setenv("LCM_DEFAULT_URL", url.c_str(), 1);  // for the children and anything they start
   std::vector<ChildSpec> children;
   for (const std::string& service : StartOrder(cast.services, cast.source)) {
-    children.push_back(ServiceCommand(service, cast.bin_dir, run_dir + "/scenario.yaml", url,
-                                      run_dir, scenario.options, request.iterations));
+    children.push_back(WithCloudUrl(ServiceCommand(service, cast.bin_dir,
+                                                   run_dir + "/scenario.yaml", url, run_dir,
+                                                   scenario.options, request.iterations),
+                                    url, buses.cloud_url));
   }
   std::string listed;
   for (const std::string& service : cast.services) listed += (listed.empty() ? "" : ", ") + service;
+  SupervisorOptions supervision;
   if (!request.replay.empty()) {
-    children.push_back(ReplayCommand(cast.lcm_logplayer, url, request.replay, request.speed));
+    for (ChildSpec& player : ReplayCommands(cast.lcm_logplayer, url, buses.cloud_url,
+                                            request.replay, request.speed)) {
+      if (player.name != cast.source) supervision.side_sources.push_back(player.name);
+      children.push_back(std::move(player));
+    }
     listed += (listed.empty() ? "" : ", ") + cast.source;
   }
   const bool record = scenario.options.record != kRecordNothing;
+  const bool split = buses.cloud_url != url;
   Say("scenario " + scenario.name + ": " + (listed.empty() ? "no services" : listed) +
       (record ? " + lcm-logger (records " + scenario.options.record + ")" : ", nothing recorded"));
   Say("bus " + url);
   Say("spy: " + SpyCommand(url));
+  if (split) Say("clouds (SENSOR_POINTS) on " + buses.cloud_url);
   Say("run folder " + run_dir);
 
-  SupervisorOptions supervision;
   supervision.grace_s = scenario.options.grace_s;
   supervision.drain_s = scenario.options.drain_s;
-  supervision.bus_port = PortOfUrl(url).value_or(-1);
+  for (const std::string& bus : {url, buses.cloud_url}) {
+    const std::optional<int> port = PortOfUrl(bus);
+    if (!port) {
+      supervision.bus_ports.clear();  // cannot see every subscriber bind: wait a moment instead
+      break;
+    }
+    if (supervision.bus_ports.empty() || supervision.bus_ports[0] != *port) {
+      supervision.bus_ports.push_back(*port);
+    }
+  }
   supervision.source = cast.source;
   supervision.restart = scenario.options.restart;
-  std::optional<ChildSpec> recorder;
-  if (record) recorder = RecorderCommand(cast.lcm_logger, url, run_dir, scenario.options.record);
-  const int code = Supervise(recorder, children, supervision);
+  const int code = Supervise(RecorderCommands(cast.lcm_logger, url, buses.cloud_url, run_dir,
+                                              scenario.options.record),
+                             children, supervision);
+  if (split && scenario.options.record == kRecordAll) MergeCloudLog(run_dir);
   return Conclude(cast, run_dir, code);
 }
 
@@ -230,13 +273,13 @@ int Launch(Request request) {
   const Resolved scenario = ResolveScenario(request);
   const Cast cast = FindCast(request, scenario);
   CheckWithServices(request, scenario, cast);
-  const std::string url = ChooseBus(request);
+  const Buses buses = ChooseBuses(request);
   if (request.check) {
     Say(request.scenario + ": OK");
     return kExitOk;
   }
   const std::string run_dir = MakeRunFolder(request, scenario);
-  return Run(request, scenario, cast, url, run_dir);
+  return Run(request, scenario, cast, buses, run_dir);
 }
 
 }  // namespace
@@ -258,6 +301,9 @@ int main(int argc, char** argv) {
            "repeatable")
       .OneValuePerUse();  // so the SCENARIO may follow it
   parser.Add("--lcm-url", &request.lcm_url, "Bus URL (default: a udpm port unique to the run)");
+  parser.Add("--cloud-url", &request.cloud_url,
+             "Bus URL of SENSOR_POINTS alone, joined only by the processes that use clouds "
+             "(default: a second udpm port unique to the run; with --lcm-url: that bus)");
   parser.Add("--replay", &request.replay,
              "Feed this recorded bus.lcmlog's SENSOR_POINTS, SIM_TRUTH and SIM_WORLD to "
              "fresh segmenter, mapper and logger with lcm-logplayer, instead of the simulator");

@@ -50,6 +50,29 @@ std::string EveryChannelBut(const std::string& channel) {
   return "(" + alternatives + ")";
 }
 
+bool UsesClouds(const std::string& name) { return name == "sim" || name == "segmenter"; }
+
+ChildSpec WithCloudUrl(ChildSpec spec, const std::string& url, const std::string& cloud_url) {
+  if (UsesClouds(spec.name) && cloud_url != url) {
+    spec.argv.insert(spec.argv.end(), {"--cloud-url", cloud_url});
+  }
+  return spec;
+}
+
+std::vector<ChildSpec> RecorderCommands(const std::string& lcm_logger, const std::string& url,
+                                        const std::string& cloud_url, const std::string& run_dir,
+                                        const std::string& record) {
+  if (record == kRecordNothing) return {};
+  std::vector<ChildSpec> recorders = {RecorderCommand(lcm_logger, url, run_dir, record)};
+  if (cloud_url != url && record == kRecordAll) {
+    ChildSpec clouds = RecorderCommand(lcm_logger, cloud_url, run_dir);
+    clouds.name = kCloudRecorder;
+    clouds.argv.back() = run_dir + "/" + kCloudLog;
+    recorders.push_back(std::move(clouds));
+  }
+  return recorders;
+}
+
 ChildSpec RecorderCommand(const std::string& lcm_logger, const std::string& url,
                           const std::string& run_dir, const std::string& record) {
   // The long form: the short -l flag is broken in LCM 1.3.1 (DESIGN.md).
@@ -67,6 +90,18 @@ ChildSpec ReplayCommand(const std::string& lcm_logplayer, const std::string& url
   return {kReplaySource,
           {lcm_logplayer, "--speed=" + FormatNumber(speed), "--regexp=" + kReplayChannels,
            "--lcm-url=" + url, log}};
+}
+
+std::vector<ChildSpec> ReplayCommands(const std::string& lcm_logplayer, const std::string& url,
+                                      const std::string& cloud_url, const std::string& log,
+                                      double speed) {
+  if (cloud_url == url) return {ReplayCommand(lcm_logplayer, url, log, speed)};
+  ChildSpec sim = ReplayCommand(lcm_logplayer, url, log, speed);
+  sim.name = kReplaySimSource;
+  sim.argv[2] = "--regexp=" + kReplaySimChannels;
+  ChildSpec clouds = ReplayCommand(lcm_logplayer, cloud_url, log, speed);
+  clouds.argv[2] = "--regexp=^SENSOR_POINTS$";
+  return {sim, clouds};
 }
 
 std::vector<std::string> StopOrder(const std::vector<std::string>& services,

@@ -19,6 +19,15 @@ inline const std::vector<std::string> kReplayServices = {"segmenter", "mapper", 
 // The channels a replay feeds: the simulator's. The services' own outputs are made afresh.
 inline const std::string kReplayChannels = "^(SENSOR_POINTS|SIM_TRUTH|SIM_WORLD)$";
 
+// The simulator's channels but the clouds: what a replay plays on the main bus when clouds have
+// a bus of their own.
+inline const std::string kReplaySimChannels = "^(SIM_TRUTH|SIM_WORLD)$";
+// The second player of such a replay; its end (exit 0) is normal and ends nothing.
+inline const std::string kReplaySimSource = "logplayer-sim";
+// The cloud bus's recorder and its log in the run folder, merged into bus.lcmlog at the end.
+inline const std::string kCloudRecorder = "lcm-logger-clouds";
+inline const std::string kCloudLog = "clouds.lcmlog";
+
 // The mapper's checkpoint in the run folder: it resumes from it when restarted.
 inline const std::string kMapperJournal = "mapper.journal";
 
@@ -37,6 +46,20 @@ ChildSpec ServiceCommand(const std::string& name, const std::string& bin_dir,
                          const std::string& run_dir, const LaunchOptions& options,
                          long iterations = -1);
 
+// Whether service `name` publishes or reads SENSOR_POINTS, and so joins the cloud bus.
+bool UsesClouds(const std::string& name);
+
+// `spec` of service `name` with --cloud-url CLOUD_URL added when the service uses clouds and
+// clouds have a bus of their own (`cloud_url` differs from `url`).
+ChildSpec WithCloudUrl(ChildSpec spec, const std::string& url, const std::string& cloud_url);
+
+// The recorders `record` (LaunchOptions::record) asks for: none for kRecordNothing, else
+// RecorderCommand on `url` and, when every channel is recorded and clouds have a bus of their
+// own, a second lcm-logger (kCloudRecorder) writing `cloud_url` to RUN/clouds.lcmlog.
+std::vector<ChildSpec> RecorderCommands(const std::string& lcm_logger, const std::string& url,
+                                        const std::string& cloud_url, const std::string& run_dir,
+                                        const std::string& record);
+
 // The recorder: lcm-logger writing the channels of `url` that `record` (LaunchOptions::record,
 // not kRecordNothing) asks for to RUN/bus.lcmlog.
 ChildSpec RecorderCommand(const std::string& lcm_logger, const std::string& url,
@@ -49,6 +72,13 @@ std::string EveryChannelBut(const std::string& channel);
 // lcm-logplayer playing `log` onto `url` at `speed` (1: as recorded), the simulator's channels.
 ChildSpec ReplayCommand(const std::string& lcm_logplayer, const std::string& url,
                         const std::string& log, double speed);
+
+// The players of a replay, the source (kReplaySource) last: ReplayCommand when `cloud_url` is
+// `url`; else SENSOR_POINTS played onto `cloud_url` (kReplaySource) and the simulator's other
+// channels onto `url` (kReplaySimSource), both from the same log.
+std::vector<ChildSpec> ReplayCommands(const std::string& lcm_logplayer, const std::string& url,
+                                      const std::string& cloud_url, const std::string& log,
+                                      double speed);
 
 // Services in the order they are stopped: the source first (so no new data enters), then the
 // pipeline from its head (segmenter, mapper, logger) so each stage sees its input's end, then

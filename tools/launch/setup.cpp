@@ -82,17 +82,33 @@ std::string ChooseRunDir(const Request& request, const std::string& name) {
   return dir;
 }
 
-std::string ChooseUrl(const Request& request) {
-  // lcm-logger records SENSOR_POINTS: every bus of a run is a cloud bus.
-  if (!request.lcm_url.empty()) return bus::CloudBusUrl(request.lcm_url);
+namespace {
+
+// A udpm URL on a free port other than `taken`.
+std::string FreeRunUrl(int taken) {
   const std::vector<int> bound = BoundUdpPorts(ReadProcNetUdp());
   const uint64_t seed =
       (static_cast<uint64_t>(getpid()) << 32) ^
       static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
-  const std::optional<int> port = ChoosePort(
-      seed, [&](int p) { return std::find(bound.begin(), bound.end(), p) != bound.end(); });
+  const std::optional<int> port = ChoosePort(seed, [&](int p) {
+    return p == taken || std::find(bound.begin(), bound.end(), p) != bound.end();
+  });
   if (!port) throw SetupError("no free UDP port for the run's bus");
-  return bus::CloudBusUrl(MakeUdpmUrl(*port, 0));
+  return MakeUdpmUrl(*port, 0);
+}
+
+}  // namespace
+
+// Every bus of a run may carry clouds (the main one does when clouds share it, and lcm-logger
+// reads each), so each asks for a receive buffer big enough for them.
+std::string ChooseUrl(const Request& request) {
+  return bus::CloudBusUrl(request.lcm_url.empty() ? FreeRunUrl(-1) : request.lcm_url);
+}
+
+std::string ChooseCloudUrl(const Request& request, const std::string& main_url) {
+  if (!request.cloud_url.empty()) return bus::CloudBusUrl(request.cloud_url);
+  if (!request.lcm_url.empty()) return main_url;
+  return bus::CloudBusUrl(FreeRunUrl(PortOfUrl(main_url).value_or(-1)));
 }
 
 void CheckConfig(const std::vector<ServiceProgram>& services, const std::string& file,

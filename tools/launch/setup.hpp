@@ -15,6 +15,7 @@ struct Request {
   std::string out;
   std::vector<std::string> sets;
   std::string lcm_url;
+  std::string cloud_url;
   std::string bin_dir;
   std::string replay;  // a recorded bus.lcmlog to feed to fresh services
   double speed = 1.0;
@@ -43,6 +44,9 @@ void MakeDirectories(const std::string& path);
 std::string ChooseRunDir(const Request& request, const std::string& name);
 // --lcm-url, else a udpm URL on a free port with the largest receive buffer allowed.
 std::string ChooseUrl(const Request& request);
+// The bus of SENSOR_POINTS: --cloud-url, else the main bus when --lcm-url was given (one URL
+// for everything), else a udpm URL on another free port.
+std::string ChooseCloudUrl(const Request& request, const std::string& main_url);
 
 // A service and its executable.
 using ServiceProgram = std::pair<std::string, std::string>;

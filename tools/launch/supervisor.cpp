@@ -89,7 +89,7 @@ class Run {
  public:
   explicit Run(const SupervisorOptions& options) : options_(options) {}
 
-  int Execute(const std::optional<ChildSpec>& recorder, const std::vector<ChildSpec>& services);
+  int Execute(const std::vector<ChildSpec>& recorders, const std::vector<ChildSpec>& services);
 
  private:
   Child* Start(const ChildSpec& spec);
@@ -108,6 +108,8 @@ class Run {
   void StopAll();
   void Sweep();
   Child* Find(const std::string& name);
+  bool IsRecorder(const std::string& name) const;
+  bool IsSource(const std::string& name) const;
   void Print(const Child& child, bool is_err, const std::string& line) const;
 
   SupervisorOptions options_;
@@ -116,6 +118,7 @@ class Run {
   std::map<std::string, int> restarts_;           // restarts so far per service
   std::vector<std::string> pending_restarts_;
   std::vector<std::string> stop_requested_;  // names we asked to stop
+  std::vector<std::string> recorders_;       // names of the recorders
   size_t name_width_ = 0;
   bool stopping_ = false;
   bool failed_ = false;
@@ -143,6 +146,16 @@ Child* Run::Find(const std::string& name) {
     if ((*it)->Name() == name) return it->get();
   }
   return nullptr;
+}
+
+bool Run::IsRecorder(const std::string& name) const {
+  return std::find(recorders_.begin(), recorders_.end(), name) != recorders_.end();
+}
+
+bool Run::IsSource(const std::string& name) const {
+  return name == options_.source || std::find(options_.side_sources.begin(),
+                                              options_.side_sources.end(),
+                                              name) != options_.side_sources.end();
 }
 
 void Run::Print(const Child& child, bool is_err, const std::string& line) const {
@@ -185,6 +198,10 @@ void Run::OnExit(Child& child) {
         std::to_string(options_.drain_s).substr(0, 4) + " s");
     draining_ = true;
     drain_end_ = After(options_.drain_s);
+    return;
+  }
+  if (IsSource(child.Name()) && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    Say(child.Name() + " finished");
     return;
   }
   if (ScheduleRestart(child)) return;
@@ -283,15 +300,18 @@ void Run::PumpUntil(Clock::time_point deadline, const std::function<bool()>& don
 }
 
 void Run::WaitForSubscribers(size_t expected) {
-  if (options_.bus_port < 0) {
+  if (options_.bus_ports.empty()) {
     PumpUntil(After(0.3), [&] { return stopping_; });
     return;
   }
   bool ready = false;
   PumpUntil(After(options_.ready_timeout_s), [&] {
-    const std::vector<int> ports = BoundUdpPorts(ReadProcNetUdp());
-    ready =
-        static_cast<size_t>(std::count(ports.begin(), ports.end(), options_.bus_port)) >= expected;
+    // Each subscriber binds one of the run's ports once.
+    size_t bound = 0;
+    for (int port : BoundUdpPorts(ReadProcNetUdp())) {
+      bound += std::count(options_.bus_ports.begin(), options_.bus_ports.end(), port) > 0;
+    }
+    ready = bound >= expected;
     return ready || stopping_;
   });
   if (!ready && !stopping_) {
@@ -322,15 +342,18 @@ void Run::StopChild(Child& child) {
 void Run::StopAll() {
   std::vector<std::string> names;
   for (auto& child : children_) {
-    if (child->Name() != "lcm-logger") names.push_back(child->Name());
+    if (!IsRecorder(child->Name())) names.push_back(child->Name());
   }
-  for (const std::string& name : StopOrder(names, options_.source)) {
+  // The side sources with the source, before the pipeline.
+  std::vector<std::string> order = options_.side_sources;
+  for (const std::string& name : StopOrder(names, options_.source)) order.push_back(name);
+  for (const std::string& name : order) {
     if (Child* child = Find(name)) StopChild(*child);
   }
-  if (Child* recorder = Find("lcm-logger"); recorder && recorder->Running()) {
-    // lcm-logger drops what it has not written yet on SIGINT: let it catch up first.
-    PumpUntil(After(forced_ ? 0.0 : options_.recorder_drain_s), [&] { return forced_; });
-    StopChild(*recorder);
+  // lcm-logger drops what it has not written yet on SIGINT: let the recorders catch up first.
+  PumpUntil(After(forced_ ? 0.0 : options_.recorder_drain_s), [&] { return forced_; });
+  for (const std::string& name : recorders_) {
+    if (Child* recorder = Find(name)) StopChild(*recorder);
   }
 }
 
@@ -350,22 +373,31 @@ void Run::Sweep() {
   });
 }
 
-int Run::Execute(const std::optional<ChildSpec>& recorder, const std::vector<ChildSpec>& services) {
+int Run::Execute(const std::vector<ChildSpec>& recorders, const std::vector<ChildSpec>& services) {
   InstallHandlers();
   // Orphaned grandchildren are re-parented to the launcher, which then kills and reaps them.
   prctl(PR_SET_CHILD_SUBREAPER, 1);
-  name_width_ = recorder ? recorder->name.size() : 0;
+  for (const ChildSpec& spec : recorders) {
+    recorders_.push_back(spec.name);
+    name_width_ = std::max(name_width_, spec.name.size());
+  }
   for (const ChildSpec& spec : services) name_width_ = std::max(name_width_, spec.name.size());
 
   size_t subscribers = 0;
-  if (recorder && Start(*recorder)) WaitForSubscribers(++subscribers);
+  for (const ChildSpec& spec : recorders) {
+    if (!stopping_ && Start(spec)) ++subscribers;
+  }
+  if (!recorders.empty()) WaitForSubscribers(subscribers);
+  bool sources_started = false;
   for (const ChildSpec& spec : services) {
     if (stopping_) break;
-    if (spec.name == options_.source) {
+    const bool source = IsSource(spec.name);
+    if (source && !sources_started) {
       WaitForSubscribers(subscribers);
+      sources_started = true;
       if (stopping_) break;
     }
-    if (Start(spec) && spec.name != options_.source) ++subscribers;
+    if (Start(spec) && !source) ++subscribers;
   }
   if (!stopping_ && (services.empty() || services.back().name != options_.source)) {
     WaitForSubscribers(subscribers);
@@ -394,9 +426,9 @@ void Say(const std::string& message) {
   std::fflush(stderr);
 }
 
-int Supervise(const std::optional<ChildSpec>& recorder, const std::vector<ChildSpec>& services,
+int Supervise(const std::vector<ChildSpec>& recorders, const std::vector<ChildSpec>& services,
               const SupervisorOptions& options) {
-  return Run(options).Execute(recorder, services);
+  return Run(options).Execute(recorders, services);
 }
 
 }  // namespace relplane::launch

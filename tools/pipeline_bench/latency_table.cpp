@@ -17,6 +17,9 @@ LatencySummary Summarise(const std::vector<double>& ms) {
   s.p50_ms = Percentile(ms, 0.50);
   s.p99_ms = Percentile(ms, 0.99);
   s.max_ms = *std::max_element(ms.begin(), ms.end());
+  double sum = 0.0;
+  for (double v : ms) sum += v;
+  s.mean_ms = sum / static_cast<double>(ms.size());
   return s;
 }
 

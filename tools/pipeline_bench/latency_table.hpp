@@ -17,6 +17,7 @@ struct LatencySummary {
   double p50_ms = 0.0;
   double p99_ms = 0.0;
   double max_ms = 0.0;
+  double mean_ms = 0.0;
   int count = 0;
 };
 
@@ -34,6 +35,10 @@ struct RateResult {
   double segmenter_cpu_ms = -1.0;
   double mapper_cpu_ms = -1.0;
   double bench_cpu_ms = -1.0;  // this process: publishing and receiving every message
+  // The rest of the machine during the run: CPU time of every other process per second of the
+  // run, in cores (0: quiet), and the 1-minute load average at its end; negative when unknown.
+  double other_cores = -1.0;
+  double load_average = -1.0;
   // Held: nothing dropped and p99 end to end within one frame period (unpaced: the period of
   // the rate achieved).
   bool held = false;

@@ -37,4 +37,33 @@ double ThreadCpuMs() {
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
 }
 
+std::optional<double> ParseMachineBusySeconds(const std::string& proc_stat,
+                                             long ticks_per_second) {
+  // "cpu  user nice system idle iowait irq softirq steal ..." in ticks (proc(5)).
+  std::istringstream line(proc_stat.substr(0, proc_stat.find('\n')));
+  std::string name;
+  long long user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0;
+  if (!(line >> name >> user >> nice >> system >> idle >> iowait >> irq >> softirq) ||
+      name != "cpu" || ticks_per_second <= 0) {
+    return std::nullopt;
+  }
+  long long steal = 0;
+  line >> steal;  // absent on old kernels
+  return static_cast<double>(user + nice + system + irq + softirq + steal) /
+         static_cast<double>(ticks_per_second);
+}
+
+std::optional<double> MachineBusySeconds() {
+  std::ifstream file("/proc/stat");
+  std::stringstream text;
+  text << file.rdbuf();
+  return ParseMachineBusySeconds(text.str(), sysconf(_SC_CLK_TCK));
+}
+
+double LoadAverage() {
+  std::ifstream file("/proc/loadavg");
+  double load = -1.0;
+  return (file >> load) ? load : -1.0;
+}
+
 }  // namespace relplane::bench

@@ -20,4 +20,13 @@ std::optional<double> ProcessCpuSeconds(pid_t pid);
 // The CPU time the calling thread has used, milliseconds (nanosecond resolution).
 double ThreadCpuMs();
 
+// Busy seconds of all cores together (everything but idle and iowait) from the text of
+// /proc/stat; std::nullopt when its first line is not the "cpu" line.
+std::optional<double> ParseMachineBusySeconds(const std::string& proc_stat, long ticks_per_second);
+// The same read now; std::nullopt when /proc/stat cannot be read.
+std::optional<double> MachineBusySeconds();
+
+// The 1-minute load average; negative when unknown.
+double LoadAverage();
+
 }  // namespace relplane::bench

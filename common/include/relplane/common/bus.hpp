@@ -33,6 +33,10 @@ class Bus {
 
 // The URL to use: `flag` when given, else $LCM_DEFAULT_URL, else "" (LCM's own default).
 std::string ResolveUrl(const std::string& flag);
+// The URL of the cloud bus, which carries SENSOR_POINTS alone: `flag` when given, else the
+// main bus's URL. On udpm every process bound to a port reads every datagram sent to it, so
+// clouds on a port of their own are read only by the processes that use them.
+std::string ResolveCloudUrl(const std::string& flag, const std::string& main_url);
 // Opens an LCM bus; throws std::runtime_error with a one-line reason when it cannot.
 std::unique_ptr<Bus> OpenLcmBus(const std::string& url);
 
@@ -45,9 +49,11 @@ template <class M>
 bool Publish(Bus& bus, const std::string& channel, const M& message) {
   const int size = message.getEncodedSize();
   if (size < 0) return false;
-  std::vector<uint8_t> buffer(static_cast<size_t>(size));
+  // One buffer per thread and type, grown to the largest message: no allocation per message.
+  thread_local std::vector<uint8_t> buffer;
+  if (buffer.size() < static_cast<size_t>(size)) buffer.resize(static_cast<size_t>(size));
   if (message.encode(buffer.data(), 0, size) != size) return false;
-  return bus.PublishRaw(channel, buffer.data(), buffer.size());
+  return bus.PublishRaw(channel, buffer.data(), static_cast<size_t>(size));
 }
 
 // Decodes one message defensively: a wrong fingerprint, truncation, trailing bytes, an absurd
@@ -85,21 +91,34 @@ bool Decode(const uint8_t* data, size_t size, M* out, std::string* reason,
   return true;
 }
 
-// Typed subscription: `on_message` gets each decoded message; `on_reject` gets the reason for
-// every message that could not be decoded.
+// Readies a message kept from one delivery to the next for decoding. lcm-gen's decoder leaves an
+// array untouched when its declared length is 0, so the previous message's elements would stay:
+// by default a fresh message; a point cloud (the one large message) has its arrays emptied,
+// keeping their capacity.
 template <class M>
-void Subscribe(Bus& bus, const std::string& channel, std::function<void(const M&)> on_message,
+void ResetForDecode(M* message) {
+  *message = M();
+}
+void ResetForDecode(point_cloud_t* message);
+
+// Typed subscription: `on_message` gets each decoded message; `on_reject` gets the reason for
+// every message that could not be decoded. Messages are decoded into one object kept by the
+// subscription (ResetForDecode: a cloud's arrays keep their capacity, so no allocation per
+// cloud in steady state): `on_message` may modify it (e.g. swap its arrays out) but must not
+// keep a reference to it.
+template <class M>
+void Subscribe(Bus& bus, const std::string& channel, std::function<void(M&)> on_message,
                std::function<void(const std::string& reason)> on_reject,
                int queue_capacity = kDefaultQueueCapacity,
                size_t max_bytes = kDefaultMaxMessageBytes) {
   bus.SubscribeRaw(
       channel,
-      [on_message = std::move(on_message), on_reject = std::move(on_reject), max_bytes](
-          const std::string&, const uint8_t* data, size_t size) {
-        M message;
+      [on_message = std::move(on_message), on_reject = std::move(on_reject), max_bytes,
+       message = std::make_shared<M>()](const std::string&, const uint8_t* data, size_t size) {
         std::string reason;
-        if (Decode(data, size, &message, &reason, max_bytes)) {
-          on_message(message);
+        ResetForDecode(message.get());
+        if (Decode(data, size, message.get(), &reason, max_bytes)) {
+          on_message(*message);
         } else {
           on_reject(reason);
         }

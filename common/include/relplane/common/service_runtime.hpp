@@ -29,5 +29,10 @@ void PublishStatus(bus::Bus& bus, ServiceStats& stats);
 // Returns 0, or 1 after a transport error.
 int RunService(bus::Bus& bus, ServiceStats& stats, const std::function<bool()>& done = {},
                const std::function<void()>& on_idle = {});
+// The same for a service that listens on one bus and reports STATUS on another (the segmenter
+// reads clouds on the cloud bus and only publishes on the main one, so it never reads the main
+// bus's traffic).
+int RunService(bus::Bus& listen, bus::Bus& report, ServiceStats& stats,
+               const std::function<bool()>& done = {}, const std::function<void()>& on_idle = {});
 
 }  // namespace relplane
