@@ -62,6 +62,15 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   r.Read("wall_end_estimate", &o.wall_end_estimate);
   r.Read("drop_pieceless_planes", &o.drop_pieceless_planes);
   r.Read("seed", &o.seed);
+  // The depth camera by name: its presets (relplane/common/depth_camera.hpp).
+  std::string sensor;
+  r.Read("sensor", &sensor);
+  if (!sensor.empty() && !o.sensor.SetPreset(sensor)) {
+    std::string names;
+    for (const auto& n : camera::PresetNames()) names += (names.empty() ? "" : ", ") + n;
+    r.Fail("sensor", "unknown sensor '" + sensor + "' (" + names + ")");
+  }
+  ReadPositive(r, "layer_rms_share", &o.sensor.layer_rms_share);
   long max_points = static_cast<long>(s.max_points);
   ReadPositive(r, "max_points", &max_points);
   s.max_points = max_points;

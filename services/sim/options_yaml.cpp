@@ -158,7 +158,51 @@ void ReadTrajectory(Reader r, TrajectoryOptions* t) {
   }
 }
 
+// sim.sensor.model and the camera parameters a named model lets a scenario change.
+void ReadCameraModel(Reader& r, SensorOptions* s) {
+  std::string model = s->camera.name;
+  r.Read("model", &model);
+  const char* const kCameraKeys[] = {"baseline",  "focal_px",  "disparity_step",
+                                     "lateral_px", "min_depth", "max_depth",
+                                     "max_incidence_deg"};
+  if (model == "gaussian") {
+    s->camera = camera::DepthCameraModel{};
+    for (const char* key : kCameraKeys) {
+      if (r.Has(key)) r.Fail(key, "only a camera model uses it (model: kinect_v1, tof, ...)");
+    }
+    return;
+  }
+  const auto preset = camera::Preset(model);
+  if (!preset) {
+    std::string names = "gaussian";
+    for (const auto& n : camera::PresetNames()) names += ", " + n;
+    r.Fail("model", "unknown sensor model '" + model + "' (" + names + ")");
+  }
+  s->camera = *preset;
+  if (r.Has("noise_sigma")) {
+    r.Fail("noise_sigma", "only model gaussian uses it: the camera model sets the noise");
+  }
+  camera::DepthCameraModel& c = s->camera;
+  r.Read("baseline", &c.baseline);
+  r.Read("focal_px", &c.focal_px);
+  r.Read("disparity_step", &c.disparity_step);
+  r.Read("lateral_px", &c.lateral_px);
+  r.Read("min_depth", &c.min_depth);
+  r.Read("max_depth", &c.max_depth);
+  r.Read("max_incidence_deg", &c.max_incidence_deg);
+  RequirePositive(r, "baseline", c.baseline);
+  RequirePositive(r, "focal_px", c.focal_px);
+  RequirePositive(r, "disparity_step", c.disparity_step);
+  RequireNonNegative(r, "lateral_px", c.lateral_px);
+  RequireNonNegative(r, "min_depth", c.min_depth);
+  if (!(c.max_depth > c.min_depth)) r.Fail("max_depth", "must exceed min_depth");
+  if (!(c.max_incidence_deg > 0.0 && c.max_incidence_deg <= 90.0)) {
+    r.Fail("max_incidence_deg", "must be in (0, 90]");
+  }
+}
+
 void ReadSensor(Reader r, SensorOptions* s) {
+  ReadCameraModel(r, s);
   r.Read("width", &s->width);
   r.Read("height", &s->height);
   r.Read("hfov_deg", &s->hfov_deg);

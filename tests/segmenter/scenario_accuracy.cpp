@@ -76,15 +76,34 @@ Cloud CloudOf(const sim::Scan& scan) {
   return cloud;
 }
 
-}  // namespace
+// What the camera resolves along a detection's normal at its centroid: the depth noise moves a
+// point along its ray, by the depth's change over the ray's depth per unit length.
+double CameraNoiseAlongNormal(const camera::DepthCameraModel& camera, const DetectedPlane& p) {
+  const Eigen::Vector3d c = p.centroid.cast<double>();
+  if (!(c.x() > 0.0)) return 0.0;
+  return camera.ResolvedSigma(c.x()) * std::abs(p.normal.cast<double>().dot(c / c.x()));
+}
 
-ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_sigma, int step) {
-  sim::ServiceOptions options = sim::LoadServiceOptions(scenario_file);
-  options.sim.sensor.noise_sigma = noise_sigma;
-  sim::Simulation simulation(options.sim);
+// Whether the true surface `t` lies within the camera's depth range on the ray of the point
+// `p` (sensor frame) measured on it; always with the Gaussian sensor.
+bool InView(const camera::DepthCameraModel& camera, const sim::TruePlane& t,
+            const Eigen::Isometry3d& pose, const Eigen::Vector3f& p) {
+  if (camera.name == "gaussian" || !(p.x() > 0.0f)) return true;
+  const Eigen::Vector3d pixel = p.cast<double>() / static_cast<double>(p.x());
+  const Eigen::Vector3d n = pose.rotation().transpose() * t.normal;
+  const double d = t.normal.dot(pose.translation()) + t.d;
+  const double depth = -d / n.dot(pixel);
+  return depth >= camera.min_depth && depth <= camera.max_depth;
+}
+
+ScenarioAccuracy Measure(const sim::SimOptions& sim_options, const Options& segmenter_options,
+                         int step) {
+  sim::Simulation simulation(sim_options);
   const std::vector<sim::TruePlane> truth = simulation.TruePlanes();
-  Segmenter segmenter;
+  const camera::DepthCameraModel& camera = sim_options.sensor.camera;
+  Segmenter segmenter(segmenter_options);
   ScenarioAccuracy acc;
+  std::vector<double> floor_ratios;
   std::vector<double> angles, offsets;
   for (int64_t k = 0; k < simulation.NumIterations(); k += step) {
     const sim::Scan scan = simulation.Frame(k);
@@ -94,6 +113,8 @@ ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_
     ++acc.frames;
     acc.detected += static_cast<int>(result.planes.size());
     for (const auto& p : result.planes) {
+      const double floor = CameraNoiseAlongNormal(camera, p);
+      if (floor > 0.0) floor_ratios.push_back(p.rms / floor);
       double a, o;
       for (const auto& t : truth) {
         if (Match(p, t, pose, &a, &o)) {
@@ -103,8 +124,12 @@ ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_
       }
     }
     std::vector<int> hits(truth.size(), 0);
-    for (int r : scan.rects) {
-      if (r >= 0 && r < static_cast<int>(hits.size())) ++hits[r];
+    for (size_t i = 0; i < scan.rects.size(); ++i) {
+      const int r = scan.rects[i];
+      if (r < 0 || r >= static_cast<int>(hits.size())) continue;
+      // A camera's noise brings back some samples of a surface beyond its range: in view is
+      // what lies within it.
+      if (InView(camera, truth[static_cast<size_t>(r)], pose, scan.points[i])) ++hits[r];
     }
     for (size_t t = 0; t < truth.size(); ++t) {
       if (hits[t] < kMinPoints) continue;
@@ -122,7 +147,23 @@ ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_
   }
   acc.median_angle_deg = Median(angles);
   acc.median_offset_m = Median(offsets);
+  if (!floor_ratios.empty()) {
+    acc.min_rms_to_camera = *std::min_element(floor_ratios.begin(), floor_ratios.end());
+  }
   return acc;
+}
+
+}  // namespace
+
+ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_sigma, int step) {
+  sim::ServiceOptions options = sim::LoadServiceOptions(scenario_file);
+  options.sim.sensor.noise_sigma = noise_sigma;
+  return Measure(options.sim, Options{}, step);
+}
+
+ScenarioAccuracy MeasureCameraScenario(const std::string& scenario_file, const Options& options,
+                                       int step) {
+  return Measure(sim::LoadServiceOptions(scenario_file).sim, options, step);
 }
 
 int FramesWithAWallTwice(const std::string& scenario_file, double noise_sigma, uint32_t seed,

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct ScenarioAccuracy {
   int correct = 0;  // detections that overlap some true rectangle in its plane
   double median_angle_deg = 0.0;
   double median_offset_m = 0.0;
+  // With a camera model: the smallest ratio of a detection's RMS to the noise the camera
+  // resolves along its normal at its centroid (infinity without one).
+  double min_rms_to_camera = std::numeric_limits<double>::infinity();
   double Precision() const { return detected ? static_cast<double>(correct) / detected : 1.0; }
   double Recall() const { return true_planes ? static_cast<double>(recalled) / true_planes : 1.0; }
 };
@@ -26,6 +30,10 @@ struct ScenarioAccuracy {
 // Runs the scenario's simulator (its `sim` section, range noise replaced by `noise_sigma`) and
 // segments every `step`-th frame with one streaming Segmenter with default options.
 ScenarioAccuracy MeasureScenario(const std::string& scenario_file, double noise_sigma, int step);
+
+// The scenario's own sensor (its camera model and noise) and `options`, every `step`-th frame.
+ScenarioAccuracy MeasureCameraScenario(const std::string& scenario_file, const Options& options,
+                                       int step);
 
 // Frames first..last of the scenario (sensor noise `noise_sigma`, noise seed `seed`), segmented
 // in order by one Segmenter with `options`, in which two walls lie over each other: vertical

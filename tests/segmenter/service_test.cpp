@@ -52,6 +52,24 @@ TEST(ServiceOptions, ReadsItsSectionAndRefusesUnknownOrBadKeys) {
   EXPECT_THROW(FromYaml("segmenter:\n  wall_end_estimate: sometimes\n"), config::ConfigError);
 }
 
+TEST(ServiceOptions, SensorPresetByName) {
+  EXPECT_FALSE(FromYaml("segmenter: {}\n").segmenter.sensor.Known());
+  for (const char* name : {"kinect_v1", "realsense_d435", "tof"}) {
+    const ServiceOptions o = FromYaml(std::string("segmenter:\n  sensor: ") + name + "\n");
+    EXPECT_TRUE(o.segmenter.sensor.Known());
+    EXPECT_EQ(o.segmenter.sensor.model.name, name);
+  }
+  const ServiceOptions share = FromYaml("segmenter:\n  sensor: tof\n  layer_rms_share: 0.3\n");
+  EXPECT_FLOAT_EQ(share.segmenter.sensor.layer_rms_share, 0.3f);
+  try {
+    FromYaml("segmenter:\n  sensor: kinect\n");
+    ADD_FAILURE() << "an unknown sensor loaded";
+  } catch (const config::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("segmenter.sensor"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("kinect_v1"), std::string::npos) << e.what();
+  }
+}
+
 point_cloud_t Message(const Cloud& c, int64_t seq) {
   point_cloud_t msg;
   msg.utime = 100000 * seq;

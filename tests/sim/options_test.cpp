@@ -187,6 +187,18 @@ TEST(SimOptions, MissingFile) {
   }
 }
 
+TEST(SimOptions, CameraModelByNameWithItsParameters) {
+  EXPECT_EQ(FromText("").sim.sensor.camera.name, "gaussian");
+  const ServiceOptions o =
+      FromText("sim:\n  sensor:\n    model: kinect_v1\n    baseline: 0.08\n    max_depth: 4.5\n");
+  const camera::DepthCameraModel& c = o.sim.sensor.camera;
+  EXPECT_EQ(c.name, "kinect_v1");
+  EXPECT_EQ(c.baseline, 0.08);
+  EXPECT_EQ(c.max_depth, 4.5);
+  EXPECT_EQ(c.focal_px, camera::Preset("kinect_v1")->focal_px) << "the rest from the preset";
+  EXPECT_EQ(FromText("sim:\n  sensor:\n    model: tof\n").sim.sensor.camera.name, "tof");
+}
+
 TEST(SimOptions, ImpossibleValuesNameTheirKey) {
   const std::pair<const char*, const char*> cases[] = {
       {"sim:\n  world:\n    generators: [{type: maze}]\n", "sim.world.generators[0].type"},
@@ -205,6 +217,13 @@ TEST(SimOptions, ImpossibleValuesNameTheirKey) {
       {"sim:\n  sensor:\n    noise_sigma: -0.1\n", "sim.sensor.noise_sigma"},
       {"sim:\n  sensor:\n    width: many\n", "sim.sensor.width"},
       {"sim:\n  start_delay: -1\n", "sim.start_delay"},
+      {"sim:\n  sensor:\n    model: kinect\n", "sim.sensor.model"},
+      {"sim:\n  sensor:\n    model: kinect_v1\n    noise_sigma: 0.01\n",
+       "sim.sensor.noise_sigma"},
+      {"sim:\n  sensor:\n    baseline: 0.1\n", "sim.sensor.baseline"},
+      {"sim:\n  sensor:\n    model: tof\n    max_depth: 0.2\n", "sim.sensor.max_depth"},
+      {"sim:\n  sensor:\n    model: kinect_v1\n    max_incidence_deg: 95\n",
+       "sim.sensor.max_incidence_deg"},
   };
   for (const auto& [yaml, key] : cases) {
     const std::string e = ErrorOf(yaml);

@@ -1,5 +1,5 @@
-// relplane-pcd-play: publishes PCD files in order as SENSOR_POINTS (seq 0, 1, ...), so clouds
-// recorded by other tools can drive the pipeline.
+// relplane-pcd-play: publishes PCD files (and TUM-convention 16-bit depth PNGs) in order as
+// SENSOR_POINTS (seq 0, 1, ...), so clouds recorded by other tools can drive the pipeline.
 
 #include <spdlog/spdlog.h>
 
@@ -11,7 +11,9 @@
 #include "relplane/common/bus.hpp"
 #include "relplane/common/cli.hpp"
 #include "relplane/common/service_runtime.hpp"
+#include "intrinsics_flags.hpp"  // tools/tum
 #include "relplane/pcd/pcd_reader.hpp"
+#include "relplane/tum/tum_folder.hpp"
 
 namespace {
 
@@ -34,6 +36,11 @@ relplane::point_cloud_t ToMessage(const relplane::pcd::PcdCloud& cloud, bool dro
   return msg;
 }
 
+bool IsPng(const std::string& file) {
+  return file.size() > 4 && (file.compare(file.size() - 4, 4, ".png") == 0 ||
+                             file.compare(file.size() - 4, 4, ".PNG") == 0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -49,7 +56,9 @@ int main(int argc, char** argv) {
   bool drop_invalid = false;
   int loops = 1;
   std::string channel = "SENSOR_POINTS";
-  parser.Add("files", &files, "PCD files, published in this order").Required();
+  parser.Add("files", &files,
+             "PCD files or 16-bit depth PNGs (TUM convention), published in this order")
+      .Required();
   parser.Add("--rate", &rate_hz, "clouds per second (0: as fast as possible)").NonNegative();
   parser.AddFlag("--optical", &optical,
                  "the files are in the optical frame (x right, y down, z forward): turn them into "
@@ -57,6 +66,8 @@ int main(int argc, char** argv) {
   parser.AddFlag("--drop-invalid", &drop_invalid, "leave NaN/inf points out of the messages");
   parser.Add("--loop", &loops, "play the file list this many times").Positive();
   parser.Add("--channel", &channel, "channel to publish on");
+  tum::IntrinsicsFlags intrinsics_flags;  // for PNG depth images
+  tum::AddIntrinsicsFlags(parser, &intrinsics_flags);
   if (auto code = parser.Parse(argc, argv)) return *code;
   try {
     cli::SetupLogging("relplane-pcd-play", flags.log_level);
@@ -69,8 +80,14 @@ int main(int argc, char** argv) {
   std::vector<pcd::PcdCloud> clouds;
   for (const auto& file : files) {
     try {
+      if (IsPng(file)) {
+        // A depth image becomes a cloud in the sensor frame already: --optical is for PCDs.
+        clouds.push_back(tum::DepthToCloud(tum::ReadDepthPng(file),
+                                           tum::ResolveIntrinsics(intrinsics_flags)));
+        continue;
+      }
       clouds.push_back(pcd::ReadPcd(file));
-    } catch (const pcd::PcdError& e) {
+    } catch (const std::exception& e) {
       std::fprintf(stderr, "relplane-pcd-play: %s\n", e.what());
       return 1;
     }

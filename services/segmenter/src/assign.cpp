@@ -117,7 +117,7 @@ RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmP
   // Scores are squared distances in units of the point's threshold,
   // d^2 / (t^2 (sigma^2 + (k r^2)^2)): below 1 is an inlier, the smallest wins.
   const float t2 = options.inlier_sigmas * options.inlier_sigmas;
-  const float k2 = options.range_noise * options.range_noise;
+  const bool point_noise = HasPointNoise(options.sensor, options.range_noise);
   std::vector<PlaneScore> scores(k);
   for (size_t j = 0; j < k; ++j) {
     const EmPlane& p = planes[j];
@@ -147,10 +147,9 @@ RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmP
       l = pl;
       l2 = pl2;
     }
-    if (k2 > 0.0f) {
+    if (point_noise) {
       for (size_t i = 0; i < kGroup; ++i) {
-        const float r2 = x[i] * x[i] + y[i] * y[i] + z[i] * z[i];
-        q[i] = k2 * r2 * r2;
+        q[i] = PointNoiseVariance(options.sensor, options.range_noise, x[i], y[i], z[i]);
       }
       RankGroup<true>(x, y, z, q, scores.data(), k, t2, l, l2);
     } else {

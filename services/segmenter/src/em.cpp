@@ -110,14 +110,12 @@ float Sum(const float* __restrict a, int n) {
   }
 }
 
-void RangeVariance(const Cloud& points, float range_noise, std::vector<float>* q) {
+void RangeVariance(const Cloud& points, const Options& options, std::vector<float>* q) {
   q->assign(points.size(), 0.0f);
-  if (range_noise <= 0.0f) return;
-  const float k2 = range_noise * range_noise;
+  if (!HasPointNoise(options.sensor, options.range_noise)) return;
   for (size_t i = 0; i < points.size(); ++i) {
-    const float r2 =
-        points.x[i] * points.x[i] + points.y[i] * points.y[i] + points.z[i] * points.z[i];
-    (*q)[i] = k2 * r2 * r2;
+    (*q)[i] = PointNoiseVariance(options.sensor, options.range_noise, points.x[i], points.y[i],
+                                 points.z[i]);
   }
 }
 
@@ -129,8 +127,8 @@ RELPLANE_SIMD_CLONES void EStep(const Cloud& points, const std::vector<EmPlane>&
   const float outlier_density = options.outlier_density;
   const int n = static_cast<int>(points.size());
   const int k = static_cast<int>(planes.size());
-  if (refit == nullptr) RangeVariance(points, options.range_noise, &resp->range_variance);
-  const bool range_noise = options.range_noise > 0.0f;
+  if (refit == nullptr) RangeVariance(points, options, &resp->range_variance);
+  const bool range_noise = HasPointNoise(options.sensor, options.range_noise);
   const float* q = resp->range_variance.data();
   resp->num_points = n;
   resp->num_planes = k;

@@ -311,8 +311,10 @@ double MeanSquaredIncidence(const Eigen::Vector3f* points, size_t num_points,
   return sum / static_cast<double>(num_points);
 }
 
-// The noise variance along a ray that grows with range (Options::range_noise), at `point`.
+// The noise variance along a ray that grows with range (the camera's, or Options::range_noise),
+// at `point`.
 double RangeVariance(const Options& options, const Eigen::Vector3d& point) {
+  if (options.sensor.Known()) return options.sensor.VarianceAt(static_cast<float>(point.x()));
   const double g = static_cast<double>(options.range_noise) * point.squaredNorm();
   return g * g;
 }
@@ -458,7 +460,12 @@ void Describe(const Cloud& cloud, const Options& options, PieceWorkspace::Buffer
     }
     const double ray_variance = along > 0.0 ? std::min(max_variance, residual / along) : 0.0;
     for (Piece& p : *pieces) {
-      if (p.kept) TrimmedRefit(ray_variance, &p);
+      if (!p.kept) continue;
+      // A known camera's noise along the rays is its own at the piece's range (far pieces are
+      // noisier than the frame's pool, which the near ones dominate).
+      TrimmedRefit(options.sensor.Known() ? RangeVariance(options, p.trimmed_centroid.cast<double>())
+                                          : ray_variance,
+                   &p);
     }
   }
   index->assign(pieces->size(), -1);

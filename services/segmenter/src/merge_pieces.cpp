@@ -145,8 +145,10 @@ bool Overlap(const DetectedPlane& p, const DetectedPlane& q) {
 bool Mergeable(const PieceStats& a, const PieceStats& b, const Options& options) {
   const DetectedPlane& p = a.plane;
   const DetectedPlane& q = b.plane;
-  if (std::fabs(p.normal.dot(q.centroid) + p.d) > options.merge_distance) return false;
-  if (std::fabs(q.normal.dot(p.centroid) + q.d) > options.merge_distance) return false;
+  const float within = options.sensor.CoplanarDistance(options.merge_distance, p.normal,
+                                                        p.centroid, q.normal, q.centroid);
+  if (std::fabs(p.normal.dot(q.centroid) + p.d) > within) return false;
+  if (std::fabs(q.normal.dot(p.centroid) + q.d) > within) return false;
   const float cosine = p.normal.dot(q.normal);
   const float cos_overlap =
       std::cos(options.overlap_merge_angle_deg * static_cast<float>(M_PI) / 180.0f);

@@ -106,7 +106,13 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
     neighbours.resize(keep);
     for (size_t m = 0; m < keep; ++m) neighbours[m] = near[m].second;
     Fit fit = FitIndices(pts, neighbours);
-    if (!fit.ok || fit.rms > options.proposal_max_rms) continue;
+    // With a known camera a neighbourhood is flat when within twice what the camera resolves
+    // at the seed's depth: at range its noise alone exceeds proposal_max_rms.
+    const float max_rms =
+        options.sensor.Known()
+            ? std::max(options.proposal_max_rms, 2.0f * std::sqrt(options.sensor.VarianceAt(sx)))
+            : options.proposal_max_rms;
+    if (!fit.ok || fit.rms > max_rms) continue;
     const float sigma = std::clamp(fit.rms, options.sigma_min, options.sigma_max);
     const size_t score = CountInliers(pts, candidates, fit.plane, kInlierSigmas * sigma, stride);
     if (score > best_score) {

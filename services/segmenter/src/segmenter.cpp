@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <utility>
 
@@ -92,9 +93,10 @@ bool MergeAndPrune(const Options& options, float min_support, std::vector<EmPlan
     for (size_t j = i + 1; j < p.size(); ++j) {
       if (gone[j]) continue;
       const bool parallel = std::fabs(p[i].normal.dot(p[j].normal)) > cos_merge;
-      const bool coplanar =
-          std::fabs(p[i].normal.dot(p[j].centroid) + p[i].d) < options.merge_distance &&
-          std::fabs(p[j].normal.dot(p[i].centroid) + p[j].d) < options.merge_distance;
+      const float within = options.sensor.CoplanarDistance(
+          options.merge_distance, p[i].normal, p[i].centroid, p[j].normal, p[j].centroid);
+      const bool coplanar = std::fabs(p[i].normal.dot(p[j].centroid) + p[i].d) < within &&
+                            std::fabs(p[j].normal.dot(p[i].centroid) + p[j].d) < within;
       if (parallel && coplanar) gone[j] = true;
     }
   }
@@ -105,6 +107,36 @@ bool MergeAndPrune(const Options& options, float min_support, std::vector<EmPlan
   const bool changed = kept.size() != p.size();
   p.swap(kept);
   return changed;
+}
+
+// Removes from `mixture` the planes of the detections flatter than the camera resolves along
+// their normals at their centroids (SensorOptions::layer_rms_share); returns how many.
+int DropLayers(const SensorOptions& sensor, const std::vector<DetectedPlane>& detected,
+               std::vector<EmPlane>* mixture) {
+  const float cos_same = std::cos(2.0f * static_cast<float>(M_PI) / 180.0f);
+  std::vector<uint8_t> layer(mixture->size(), 0);
+  for (const DetectedPlane& p : detected) {
+    if (p.rms >= sensor.layer_rms_share * sensor.SigmaAlongNormal(p.normal, p.centroid)) continue;
+    // Its mixture plane: the one through its centroid, facing the same way.
+    int best = -1;
+    float best_offset = std::numeric_limits<float>::infinity();
+    for (size_t j = 0; j < mixture->size(); ++j) {
+      const EmPlane& m = (*mixture)[j];
+      const float offset = std::fabs(m.normal.dot(p.centroid) + m.d);
+      if (std::fabs(m.normal.dot(p.normal)) > cos_same && offset < best_offset) {
+        best = static_cast<int>(j);
+        best_offset = offset;
+      }
+    }
+    if (best >= 0) layer[static_cast<size_t>(best)] = 1;
+  }
+  std::vector<EmPlane> kept;
+  for (size_t j = 0; j < mixture->size(); ++j) {
+    if (!layer[j]) kept.push_back((*mixture)[j]);
+  }
+  const int dropped = static_cast<int>(mixture->size() - kept.size());
+  mixture->swap(kept);
+  return dropped;
 }
 
 }  // namespace
@@ -210,6 +242,19 @@ Result Segmenter::Segment(const Cloud& input) {
     result.em_planes = static_cast<int>(planes.size());
     describe_all();
   }
+  // A plane flatter than the camera resolves at its range is no surface but the points of one
+  // quantized depth value: a tilted surface at range is a staircase of exactly flat layers, and
+  // each fits a plane with an RMS near zero. Its mixture plane goes and the frame is assigned
+  // and described again, so its points return to the surface they sample.
+  if (options_.sensor.Known()) {
+    const int layers = DropLayers(options_.sensor, result.planes, &planes);
+    if (layers > 0) {
+      DropLayers(options_.sensor, result.planes, &previous_);
+      result.layer_planes = layers;
+      result.em_planes = static_cast<int>(planes.size());
+      describe_all();
+    }
+  }
   // A mixture plane that leaned between two faces at a convex corner (a grazing pilaster front
   // and the side it meets) held the side's samples up to 10 cm from the corner: its piece's line
   // fit (DominantLineFit) leaves them out of the fit but not out of the piece, which reached
@@ -227,6 +272,30 @@ Result Segmenter::Segment(const Cloud& input) {
     }
     result.line_refits = static_cast<int>(line_refits.size());
     describe_all();
+  }
+  if (options_.sensor.Known()) {
+    // A layer may remain where its surface's own mixture plane holds nothing else (a wall just
+    // beyond the camera's range, of which only its nearest depth value comes back): not
+    // reported.
+    const SensorOptions& sensor = options_.sensor;
+    const auto flat = [&sensor](const DetectedPlane& p) {
+      return p.rms < sensor.layer_rms_share * sensor.SigmaAlongNormal(p.normal, p.centroid);
+    };
+    const auto layers = std::count_if(result.planes.begin(), result.planes.end(), flat);
+    if (layers > 0 && options_.keep_labels) {
+      // Labels index the planes: the layers' points become unlabelled, the rest renumbered.
+      std::vector<int32_t> renumber(result.planes.size(), -1);
+      int32_t next = 0;
+      for (size_t j = 0; j < result.planes.size(); ++j) {
+        if (!flat(result.planes[j])) renumber[j] = next++;
+      }
+      for (int32_t& l : pieces) {
+        if (l >= 0) l = renumber[static_cast<size_t>(l)];
+      }
+    }
+    result.planes.erase(std::remove_if(result.planes.begin(), result.planes.end(), flat),
+                        result.planes.end());
+    result.layer_planes += static_cast<int>(layers);
   }
   const auto assigned =
       std::count_if(labels_.begin(), labels_.end(), [](int32_t l) { return l >= 0; });

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 
+#include "relplane/segmenter/sensor.hpp"
+
 namespace relplane::segmenter {
 
 struct Options {
@@ -100,6 +102,10 @@ struct Options {
   // (segmenter.cpp: a noise-free frame's rows of floor and ceiling samples and a wall column at
   // one depth form a plane that cut wall pieces short).
   bool drop_pieceless_planes = true;
+
+  // The depth camera, when the segmenter is told (sensor.hpp): its noise per range replaces
+  // range_noise, sets a floor under every plane's noise and bands that grow with depth.
+  SensorOptions sensor;
 
   bool keep_labels = false;  // fill Result::labels (pictures, tests)
   uint32_t seed = 1;         // proposals' random choices; fixed per frame for determinism

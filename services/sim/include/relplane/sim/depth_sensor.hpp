@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "relplane/common/depth_camera.hpp"
 #include "relplane/common/geometry.hpp"
 #include "relplane/sim/ray_caster.hpp"
 #include "relplane/sim/world.hpp"
@@ -22,6 +23,9 @@ struct SensorOptions {
   double noise_sigma = 0.0;   // standard deviation of Gaussian range noise along the ray, metres
   double dropout = 0.0;       // probability that a hit is lost, in [0, 1)
   uint64_t seed = 1;          // noise and dropout are a function of (seed, frame)
+  // The camera model: "gaussian" (noise_sigma along the ray, nothing else) or a named camera
+  // (relplane/common/depth_camera.hpp) whose noise, quantization and limits replace it.
+  camera::DepthCameraModel camera;
 };
 
 // One frame: points in the sensor frame (x forward, y left, z up), only hits, in the grid's
@@ -30,6 +34,7 @@ struct SensorOptions {
 struct Scan {
   std::vector<Eigen::Vector3f> points;
   std::vector<int> rects;
+  std::vector<int> pixels;  // per point: its ray's index in the grid (col * height + row)
 };
 
 class DepthSensor {
@@ -47,7 +52,11 @@ class DepthSensor {
   const SensorOptions& Options() const { return options_; }
 
  private:
+  // A camera model's frame (options_.camera other than "gaussian").
+  Scan CaptureWithCamera(const geometry::Pose2& pose, uint64_t frame);
+
   SensorOptions options_;
+  std::vector<Eigen::Vector4d> planes_;  // per rectangle: world normal and offset
   RayGrid grid_;
   RayCaster caster_;
   std::vector<Hit> hits_;
