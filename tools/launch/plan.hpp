@@ -16,8 +16,9 @@ inline const std::string kSourceService = "sim";
 inline const std::string kReplaySource = "logplayer";
 // The services a replay feeds (the simulator's part comes from the log).
 inline const std::vector<std::string> kReplayServices = {"segmenter", "mapper", "logger"};
-// The channels a replay feeds: the simulator's. The services' own outputs are made afresh.
-inline const std::string kReplayChannels = "^(SENSOR_POINTS|SIM_TRUTH|SIM_WORLD)$";
+// The channels a replay feeds: the simulator's (wheel odometry too, when it was on). The
+// services' own outputs are made afresh.
+inline const std::string kReplayChannels = "^(SENSOR_POINTS|SIM_TRUTH|SIM_WORLD|ODOMETRY)$";
 
 // The mapper's checkpoint in the run folder: it resumes from it when restarted.
 inline const std::string kMapperJournal = "mapper.journal";
