@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "relplane/common/covariance.hpp"
 #include "relplane/common/geometry.hpp"
 
 namespace relplane::mapper {
@@ -62,7 +63,29 @@ bool FromPlaneSet(const plane_set_t& msg, std::vector<PlaneInput>* planes, std::
   return true;
 }
 
-pose_t ToPoseMessage(const PoseEstimate& estimate, double z, int64_t utime, int64_t seq) {
+bool FromOdometry(const odometry_t& msg, OdometryReading* reading, std::string* reason) {
+  for (const double v : msg.position) {
+    if (!std::isfinite(v)) {
+      *reason = "non-finite position";
+      return false;
+    }
+  }
+  const Eigen::Quaterniond q = geometry::QuaternionFromWxyz(msg.orientation);
+  const double norm = q.norm();
+  if (!std::isfinite(norm) || norm < 1e-9) {
+    *reason = "invalid orientation quaternion";
+    return false;
+  }
+  if (!geometry::ValidCovariance(msg.covariance, reason)) return false;
+  reading->utime = msg.utime;
+  reading->seq = msg.seq;
+  reading->pose = {msg.position[0], msg.position[1], geometry::YawOf(q.normalized())};
+  reading->covariance = geometry::CovarianceFromRowMajor(msg.covariance);
+  return true;
+}
+
+pose_t ToPoseMessage(const PoseEstimate& estimate, const Eigen::Matrix3d& covariance, double z,
+                     int64_t utime, int64_t seq) {
   pose_t msg;
   msg.utime = utime;
   msg.seq = seq;
@@ -72,6 +95,7 @@ pose_t ToPoseMessage(const PoseEstimate& estimate, double z, int64_t utime, int6
   const Eigen::Quaterniond q(Eigen::AngleAxisd(estimate.pose.yaw, Eigen::Vector3d::UnitZ()));
   geometry::QuaternionToWxyz(q, msg.orientation);
   msg.status = StatusCode(estimate.status);
+  geometry::CovarianceToRowMajor(covariance, msg.covariance);
   return msg;
 }
 

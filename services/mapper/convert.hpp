@@ -2,6 +2,7 @@
 // PLANES -> mapper input, mapper output -> POSE and MAP.
 
 #include <relplane/map_t.hpp>
+#include <relplane/odometry_t.hpp>
 #include <relplane/plane_set_t.hpp>
 #include <relplane/pose_t.hpp>
 
@@ -16,7 +17,13 @@ namespace relplane::mapper {
 // whole (a plane with NaN or infinite numbers, a zero normal, a negative vertex count).
 bool FromPlaneSet(const plane_set_t& msg, std::vector<PlaneInput>* planes, std::string* reason);
 
-pose_t ToPoseMessage(const PoseEstimate& estimate, double z, int64_t utime, int64_t seq);
+// `covariance`: of (x, y, yaw), world frame (observability.hpp).
+// Converts a wheel odometry reading. False with a one-line reason for non-finite numbers, a
+// zero quaternion or a covariance that is not symmetric positive semi-definite.
+bool FromOdometry(const odometry_t& msg, OdometryReading* reading, std::string* reason);
+
+pose_t ToPoseMessage(const PoseEstimate& estimate, const Eigen::Matrix3d& covariance, double z,
+                     int64_t utime, int64_t seq);
 map_t ToMapMessage(const MapSnapshot& map, int64_t utime, int64_t seq);
 
 }  // namespace relplane::mapper

@@ -6,6 +6,7 @@
 
 #include "convert.hpp"
 #include "relplane/common/service_runtime.hpp"
+#include "relplane/mapper/pose_covariance.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -22,6 +23,21 @@ void MapperService::Subscribe() {
   bus::Subscribe<plane_set_t>(
       bus_, "PLANES", [this](const plane_set_t& msg) { OnPlanes(msg); },
       [this](const std::string& reason) { stats_.Rejected("PLANES: " + reason); });
+  bus::Subscribe<odometry_t>(
+      bus_, "ODOMETRY", [this](const odometry_t& msg) { OnOdometry(msg); },
+      [this](const std::string& reason) { stats_.Rejected("ODOMETRY: " + reason); });
+}
+
+void MapperService::OnOdometry(const odometry_t& msg) {
+  OdometryReading reading;
+  std::string reason;
+  if (!FromOdometry(msg, &reading, &reason)) {
+    stats_.Rejected("ODOMETRY seq " + std::to_string(msg.seq) + ": " + reason);
+    return;
+  }
+  if (!odometry_.Add(reading)) {
+    stats_.Rejected("ODOMETRY seq " + std::to_string(msg.seq) + ": utime not after the last");
+  }
 }
 
 void MapperService::OnPlanes(const plane_set_t& msg) {
@@ -33,9 +49,11 @@ void MapperService::OnPlanes(const plane_set_t& msg) {
   }
   if (!stats_.AcceptSeq(msg.seq)) return;  // repeated or out of order: counted, ignored
   const int64_t t0 = MonotonicMicros();
-  const PoseEstimate estimate = mapper_.Process(msg.seq, planes);
+  const PoseEstimate estimate = mapper_.Process(msg.seq, planes, odometry_.TakeUntil(msg.utime));
   stats_.Processed(static_cast<double>(MonotonicMicros() - t0) / 1000.0);
-  bus::Publish(bus_, "POSE", ToPoseMessage(estimate, mapper_.Height(), msg.utime, msg.seq));
+  const Observability observability = ObservabilityOf(estimate);
+  bus::Publish(bus_, "POSE", ToPoseMessage(estimate, observability.covariance, mapper_.Height(),
+                                           msg.utime, msg.seq));
   // After Process: an input that crashes the mapper is not replayed into the next crash. After
   // POSE: the journal write stays off the pose's latency.
   Journal(msg.seq, std::move(planes));

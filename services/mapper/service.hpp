@@ -3,6 +3,7 @@
 // 10 Hz of simulated time) out; bad input is counted and logged through ServiceStats, never a
 // crash. With a checkpoint journal it resumes where a killed mapper stopped (journal.hpp).
 
+#include <relplane/odometry_t.hpp>
 #include <relplane/plane_set_t.hpp>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "relplane/common/bus.hpp"
 #include "relplane/common/service_stats.hpp"
 #include "relplane/mapper/mapper.hpp"
+#include "relplane/mapper/odometry.hpp"
 
 namespace relplane::mapper {
 
@@ -18,9 +20,11 @@ class MapperService {
  public:
   MapperService(bus::Bus& bus, MapperOptions options);
 
-  // Subscribes PLANES on the bus given to the constructor.
+  // Subscribes PLANES, and ODOMETRY (optional: without it the mapper runs on planes alone), on
+  // the bus given to the constructor.
   void Subscribe();
   void OnPlanes(const plane_set_t& msg);
+  void OnOdometry(const odometry_t& msg);
   // Publishes MAP now if anything was processed (at shutdown).
   void PublishMap();
   // Replays the journal at `path` (if any) through the fresh mapper and opens it for appending.
@@ -37,6 +41,7 @@ class MapperService {
   ServiceStats stats_;
   Mapper mapper_;
   JournalWriter journal_;
+  OdometryIntegrator odometry_;
   bool map_pending_ = false;
   int64_t last_map_utime_ = -1;
   int64_t last_utime_ = 0;

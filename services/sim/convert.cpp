@@ -1,5 +1,9 @@
 #include "convert.hpp"
 
+#include <algorithm>
+#include <iterator>
+
+#include "relplane/common/covariance.hpp"
 #include "relplane/common/geometry.hpp"
 
 namespace relplane::sim {
@@ -27,6 +31,20 @@ pose_t ToTruthPose(const Eigen::Isometry3d& pose, int64_t seq, int64_t utime) {
   for (int i = 0; i < 3; ++i) msg.position[i] = pose.translation()[i];
   geometry::QuaternionToWxyz(Eigen::Quaterniond(pose.rotation()), msg.orientation);
   msg.status = pose_t::STATUS_TRUTH;
+  std::fill(std::begin(msg.covariance), std::end(msg.covariance), 0.0);  // the truth is exact
+  return msg;
+}
+
+odometry_t ToOdometry(const OdometryReading& reading, int64_t utime) {
+  odometry_t msg;
+  msg.utime = utime;
+  msg.seq = reading.seq;
+  msg.position[0] = reading.pose.x;
+  msg.position[1] = reading.pose.y;
+  msg.position[2] = 0.0;
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(reading.pose.yaw, Eigen::Vector3d::UnitZ()));
+  geometry::QuaternionToWxyz(q, msg.orientation);
+  geometry::CovarianceToRowMajor(reading.covariance, msg.covariance);
   return msg;
 }
 

@@ -1,10 +1,12 @@
 // relplane-sim: moves a depth sensor through the scenario's world and publishes, per
 // iteration, its point cloud (SENSOR_POINTS, on --cloud-url when given) and true pose
-// (SIM_TRUTH); the true world (SIM_WORLD) at start and once a second. Exits 0 when the trajectory ends.
+// (SIM_TRUTH); the true world (SIM_WORLD) at start and once a second; wheel odometry (ODOMETRY)
+// when sim.odometry.enabled. Exits 0 when the trajectory ends.
 
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <thread>
 
@@ -52,6 +54,8 @@ int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double 
   const int64_t start = MonotonicMicros();
   int64_t next_second = start;
   int64_t next_progress = start + 5000000;
+  sim::WheelOdometry odometry(options.odometry, simulation.PlanarPose(0));
+  int64_t odometry_next = 0;  // the next reading's index, at its own rate
   int64_t k = 0;
   for (; k < total && !StopRequested(); ++k) {
     if (rate > 0.0) SleepUntil(start + static_cast<int64_t>(static_cast<double>(k) * 1e6 / rate));
@@ -63,6 +67,18 @@ int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double 
       Publish(bus, stats, "SIM_WORLD", world);
       if (k > 0) PublishStatus(bus, stats);
       next_second += 1000000;
+    }
+    // Wheel odometry up to this iteration's time, before its cloud: a mapper gets the motion
+    // before the planes it goes with.
+    if (options.odometry.enabled) {
+      const double odometry_rate = options.odometry.rate_hz > 0.0 ? options.odometry.rate_hz
+                                                                  : options.sim.rate_hz;
+      const double t_k = static_cast<double>(k) / options.sim.rate_hz;
+      for (double t; (t = static_cast<double>(odometry_next) / odometry_rate) <= t_k + 1e-9;
+           ++odometry_next) {
+        const sim::OdometryReading reading = odometry.Step(simulation.PlanarPoseAt(t));
+        Publish(bus, stats, "ODOMETRY", sim::ToOdometry(reading, std::llround(t * 1e6)));
+      }
     }
     const int64_t t0 = MonotonicMicros();
     const sim::Scan scan = simulation.Frame(k);

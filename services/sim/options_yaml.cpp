@@ -225,6 +225,32 @@ void ReadSensor(Reader r, SensorOptions* s) {
   if (!(s->dropout >= 0.0 && s->dropout < 1.0)) r.Fail("dropout", "must be in [0, 1)");
 }
 
+void ReadOdometry(Reader r, OdometryOptions* o) {
+  r.Read("enabled", &o->enabled);
+  r.Read("rate", &o->rate_hz);
+  r.Read("scale_error_percent", &o->scale_error_percent);
+  r.Read("turn_scale_error_percent", &o->turn_scale_error_percent);
+  r.Read("heading_drift_deg_per_m", &o->heading_drift_deg_per_m);
+  r.Read("noise_m_per_sqrt_m", &o->noise_m_per_sqrt_m);
+  r.Read("noise_deg_per_sqrt_m", &o->noise_deg_per_sqrt_m);
+  r.Read("turn_noise_percent", &o->turn_noise_percent);
+  long long seed = static_cast<long long>(o->seed);
+  r.Read("seed", &seed);
+  if (seed < 0) r.Fail("seed", "must not be negative");
+  o->seed = static_cast<uint64_t>(seed);
+  RequireNonNegative(r, "rate", o->rate_hz);
+  const std::pair<const char*, double> systematic[] = {
+      {"scale_error_percent", o->scale_error_percent},
+      {"turn_scale_error_percent", o->turn_scale_error_percent},
+      {"heading_drift_deg_per_m", o->heading_drift_deg_per_m}};
+  for (const auto& [key, value] : systematic) {
+    if (!(std::abs(value) < 50.0)) r.Fail(key, "must be finite and within +-50");
+  }
+  RequireNonNegative(r, "noise_m_per_sqrt_m", o->noise_m_per_sqrt_m);
+  RequireNonNegative(r, "noise_deg_per_sqrt_m", o->noise_deg_per_sqrt_m);
+  RequireNonNegative(r, "turn_noise_percent", o->turn_noise_percent);
+}
+
 }  // namespace
 
 ServiceOptions ReadServiceOptions(Reader reader) {
@@ -240,6 +266,7 @@ ServiceOptions ReadServiceOptions(Reader reader) {
   ReadWorld(reader.Child("world"), &o.sim.world);
   ReadTrajectory(reader.Child("trajectory"), &o.sim.trajectory);
   ReadSensor(reader.Child("sensor"), &o.sim.sensor);
+  ReadOdometry(reader.Child("odometry"), &o.odometry);
   reader.Finish();
   return o;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "relplane/common/options.hpp"
+#include "relplane/sim/odometry.hpp"
 #include "relplane/sim/simulation.hpp"
 
 namespace relplane::sim {
@@ -19,6 +20,8 @@ struct ServiceOptions {
   // that downstream sees the gaps. SIM_TRUTH is published for every frame: the truth does not
   // depend on the transport, and the logger matches POSE to truth by seq.
   double drop_fraction = 0.0;
+  // Wheel odometry on ODOMETRY (sim.odometry), off unless enabled.
+  OdometryOptions odometry;
 };
 
 // True when frame `seq` is one of the `fraction` of frames dropped for `seed`: a hash of seed

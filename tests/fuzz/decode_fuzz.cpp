@@ -4,6 +4,7 @@
 // spending its time guessing 64-bit hashes.
 
 #include <relplane/map_t.hpp>
+#include <relplane/odometry_t.hpp>
 #include <relplane/plane_set_t.hpp>
 #include <relplane/point_cloud_t.hpp>
 #include <relplane/pose_t.hpp>
@@ -49,6 +50,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     case 1: Exercise<relplane::plane_set_t>(data, size, with_hash); break;
     case 2: Exercise<relplane::map_t>(data, size, with_hash); break;
     case 3: Exercise<relplane::pose_t>(data, size, with_hash); break;
+    case 5: Exercise<relplane::odometry_t>(data, size, with_hash); break;
     default: Exercise<relplane::status_t>(data, size, with_hash); break;
   }
   return 0;

@@ -27,6 +27,12 @@ pose_t Pose(FuzzedDataProvider& in) {
   p.orientation[0] = 1.0;
   for (double& v : p.orientation) v += fuzz::Number(in, 1.0);
   p.status = in.ConsumeIntegral<int8_t>();
+  // Mostly a diagonal covariance (valid), sometimes any numbers (rejected unless PSD).
+  if (in.ConsumeBool()) {
+    for (double& v : p.covariance) v = fuzz::Number(in, 1.0);
+  } else {
+    for (int k = 0; k < 3; ++k) p.covariance[4 * k] = std::abs(fuzz::Number(in, 1.0));
+  }
   return p;
 }
 

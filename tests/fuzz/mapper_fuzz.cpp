@@ -5,10 +5,12 @@
 // decode and be finite.
 
 #include <relplane/map_t.hpp>
+#include <relplane/odometry_t.hpp>
 #include <relplane/plane_set_t.hpp>
 #include <relplane/pose_t.hpp>
 
 #include "fuzz_support.hpp"
+#include "relplane/common/covariance.hpp"
 #include "service.hpp"
 
 namespace {
@@ -42,6 +44,8 @@ void CheckOutputs(fuzz::MemoryBus& bus) {
     const pose_t pose = fuzz::MustDecode<pose_t>(bytes);
     for (double v : pose.position) fuzz::MustBeFinite(v);
     for (double v : pose.orientation) fuzz::MustBeFinite(v);
+    std::string reason;
+    if (!geometry::ValidCovariance(pose.covariance, &reason)) std::abort();
   }
   for (const auto& bytes : bus.published["MAP"]) {
     const map_t map = fuzz::MustDecode<map_t>(bytes);
@@ -66,6 +70,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       const std::vector<uint8_t> rest = in.ConsumeBytes<uint8_t>(in.ConsumeIntegralInRange(0, 512));
       raw.insert(raw.end(), rest.begin(), rest.end());
       bus.Deliver("PLANES", raw);
+      continue;
+    }
+    if (in.ConsumeIntegralInRange<int>(0, 7) == 0) {
+      // Wheel odometry: mostly sane readings, sometimes hostile numbers or time stamps.
+      odometry_t odo{};
+      odo.seq = in.ConsumeIntegralInRange<int64_t>(-1, 200);
+      odo.utime = in.ConsumeBool() ? in.ConsumeIntegral<int64_t>() : odo.seq * 33333;
+      for (double& v : odo.position) v = fuzz::Number(in, 20.0);
+      odo.orientation[0] = 1.0;
+      for (double& v : odo.orientation) v += fuzz::Number(in, 1.0);
+      for (double& v : odo.covariance) v = in.ConsumeBool() ? 0.0 : fuzz::Number(in, 1.0);
+      bus.Deliver("ODOMETRY", fuzz::Encode(odo));
       continue;
     }
     plane_set_t set{};

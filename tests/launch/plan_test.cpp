@@ -29,9 +29,10 @@ TEST(ReplayCommandTest, PlaysOnlyTheSimulatorChannelsOnTheRunBus) {
   const ChildSpec player =
       ReplayCommand("/usr/bin/lcm-logplayer", "udpm://g:5", "/r/bus.lcmlog", 2);
   EXPECT_EQ(player.name, kReplaySource);
-  EXPECT_EQ(player.argv, (std::vector<std::string>{"/usr/bin/lcm-logplayer", "--speed=2",
-                                                   "--regexp=^(SENSOR_POINTS|SIM_TRUTH|SIM_WORLD)$",
-                                                   "--lcm-url=udpm://g:5", "/r/bus.lcmlog"}));
+  EXPECT_EQ(player.argv,
+            (std::vector<std::string>{"/usr/bin/lcm-logplayer", "--speed=2",
+                                      "--regexp=^(SENSOR_POINTS|SIM_TRUTH|SIM_WORLD|ODOMETRY)$",
+                                      "--lcm-url=udpm://g:5", "/r/bus.lcmlog"}));
 }
 
 TEST(StartOrderTest, SourceLastSoSubscribersHearItsFirstMessage) {

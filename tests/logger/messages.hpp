@@ -29,6 +29,9 @@ inline relplane::pose_t PoseMessage(const eval::PoseSample& p) {
   msg.orientation[2] = p.orientation.y();
   msg.orientation[3] = p.orientation.z();
   msg.status = static_cast<int8_t>(p.status);
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) msg.covariance[3 * r + k] = p.covariance(r, k);
+  }
   return msg;
 }
 

@@ -85,6 +85,14 @@ TEST(Outputs, MetricsJsonParsesWithNullForMissingNumbers) {
   EXPECT_TRUE(json["expect"][0]["pass"].boolean);
   EXPECT_TRUE(json["expect_pass"].boolean);
   EXPECT_EQ(json["timing"]["services"].fields.size(), 1u);
+  // The estimate is the truth: every frame lies within 3 sigma of even a zero covariance.
+  const size_t frames = testing::LoopInRoom().size();
+  EXPECT_EQ(json["trajectory"]["consistency"]["frames"].number, static_cast<double>(frames));
+  EXPECT_EQ(json["trajectory"]["consistency"]["position_within_3sigma"].number, 1.0);
+  const auto by_status = json["trajectory"]["consistency_by_status"];
+  EXPECT_EQ(by_status.fields.size(), 4u);
+  EXPECT_EQ(by_status["tracking"]["yaw_within_3sigma"].number, 1.0);
+  EXPECT_TRUE(by_status["lost"]["yaw_within_3sigma"].IsNull());  // no LOST frame
   // An empty run is valid JSON too.
   const Json empty = Parsed(MetricsToJson(RunMetrics{}, "test"));
   EXPECT_TRUE(empty["trajectory"]["ate_rmse_m"].IsNull());
@@ -160,7 +168,11 @@ TEST(Outputs, ErrorSvgHasAxesUnitsAndBothSeries) {
   std::map<std::string, int> counts;
   ASSERT_TRUE(testing::CheckXml(svg, &error, &counts)) << error;
   ExpectXmllintAccepts(svg, "error.svg");
-  EXPECT_EQ(counts["polyline"], 2);
+  // The two error series, and the signed errors along and across the heading in front of
+  // their +-2 sigma bands.
+  EXPECT_EQ(counts["polyline"], 4);
+  EXPECT_EQ(counts["polygon"], 2);
+  EXPECT_NE(svg.find("+-2 sigma"), std::string::npos);
   EXPECT_NE(svg.find("time (s)"), std::string::npos);
   EXPECT_NE(svg.find("position error (m)"), std::string::npos);
 }

@@ -130,3 +130,59 @@ TEST(TrajectoryMetrics, NoMatchesGiveNoNumbers) {
 
 }  // namespace
 }  // namespace relplane::eval
+
+namespace relplane::eval {
+namespace {
+
+// Gaussian errors drawn from a known covariance: a consistent estimate keeps about 98.9 % of
+// its frames within 3 sigma (2 dof); claiming a tenth of the true sigma keeps far fewer.
+TEST(TrajectoryMetrics, ConsistencyCountsFramesWithinThreeSigma) {
+  std::vector<PoseSample> truth;  // a slow turn, so along and across change direction
+  for (int i = 0; i < 2000; ++i) truth.push_back(testing::Pose(i, 0.01 * i, 0.0, 0.003 * i));
+  std::mt19937 rng(7);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  const double sigma_x = 0.05, sigma_y = 0.02, sigma_yaw = 0.01;
+  const auto estimate = [&](double claimed) {
+    std::vector<PoseSample> out;
+    for (const PoseSample& p : truth) {
+      PoseSample e = testing::Pose(p.seq, p.position.x() + sigma_x * unit(rng),
+                                   p.position.y() + sigma_y * unit(rng),
+                                   geometry::YawOf(p.orientation) + sigma_yaw * unit(rng));
+      e.status = p.seq % 2 == 0 ? 1 : 2;
+      e.covariance.diagonal() << std::pow(claimed * sigma_x, 2), std::pow(claimed * sigma_y, 2),
+          std::pow(claimed * sigma_yaw, 2);
+      out.push_back(e);
+    }
+    return out;
+  };
+  const TrajectoryMetrics honest = ComputeTrajectoryMetrics(MatchBySeq(estimate(1.0), truth), 1.0);
+  ASSERT_GT(truth.size(), 200u);
+  EXPECT_EQ(honest.consistency.frames, static_cast<int64_t>(truth.size()));
+  EXPECT_GT(honest.consistency.position_within_3sigma, 0.97);
+  EXPECT_GT(honest.consistency.yaw_within_3sigma, 0.98);
+  EXPECT_EQ(honest.consistency_by_status[1].frames + honest.consistency_by_status[2].frames,
+            honest.consistency.frames);
+  const TrajectoryMetrics sure = ComputeTrajectoryMetrics(MatchBySeq(estimate(0.1), truth), 1.0);
+  EXPECT_LT(sure.consistency.position_within_3sigma, 0.5);
+  EXPECT_LT(sure.consistency.yaw_within_3sigma, 0.5);
+  // The signed along/across errors and their sigmas are there for error.svg's band.
+  for (const ErrorSample& e : honest.errors) {
+    EXPECT_NEAR(std::hypot(e.along_m, e.across_m), e.position_m, 1e-9);
+    EXPECT_GE(e.sigma_along_m, std::min(sigma_x, sigma_y) - 1e-12);
+    EXPECT_LE(e.sigma_along_m, std::max(sigma_x, sigma_y) + 1e-12);
+  }
+}
+
+TEST(TrajectoryMetrics, AZeroCovarianceHoldsOnlyAZeroError) {
+  EXPECT_TRUE(PositionWithin3Sigma(Eigen::Vector2d::Zero(), Eigen::Matrix2d::Zero()));
+  EXPECT_FALSE(PositionWithin3Sigma(Eigen::Vector2d(1e-3, 0), Eigen::Matrix2d::Zero()));
+  Eigen::Matrix2d c;
+  c << 0.01, 0.0, 0.0, 1e-4;  // sigma 0.1 m along x, 0.01 m along y
+  EXPECT_TRUE(PositionWithin3Sigma({0.25, 0.0}, c));
+  EXPECT_FALSE(PositionWithin3Sigma({0.0, 0.05}, c));
+  EXPECT_TRUE(YawWithin3Sigma(0.029, 1e-4));
+  EXPECT_FALSE(YawWithin3Sigma(0.031, 1e-4));
+}
+
+}  // namespace
+}  // namespace relplane::eval

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <fstream>
 
@@ -48,7 +49,14 @@ TEST(Convert, PoseAndMapMessages) {
   PoseEstimate est;
   est.pose = {1.0, 2.0, M_PI / 2};
   est.status = PoseStatus::kMotionModel;
-  const pose_t pose = ToPoseMessage(est, 1.0, 100, 3);
+  Eigen::Matrix3d covariance;
+  covariance << 1e-4, 2e-5, 0, 2e-5, 1.0, 3e-6, 0, 3e-6, 1e-6;
+  const pose_t pose = ToPoseMessage(est, covariance, 1.0, 100, 3);
+  // Row-major (x, y, yaw) as pose_t.lcm documents it.
+  EXPECT_EQ(pose.covariance[1], 2e-5);
+  EXPECT_EQ(pose.covariance[4], 1.0);
+  EXPECT_EQ(pose.covariance[5], 3e-6);
+  EXPECT_EQ(pose.covariance[8], 1e-6);
   EXPECT_EQ(pose.seq, 3);
   EXPECT_EQ(pose.utime, 100);
   EXPECT_EQ(pose.status, static_cast<int8_t>(pose_t::STATUS_MOTION_MODEL));
@@ -83,6 +91,47 @@ TEST(Options, ReadsTheSectionAndRefusesUnknownKeys) {
   std::ofstream(file) << "mapper:\n  corner_radius: -0.1\n";
   EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
   std::remove(file.c_str());
+}
+
+}  // namespace
+}  // namespace relplane::mapper
+
+namespace relplane::mapper {
+namespace {
+
+odometry_t OdometryMessage() {
+  odometry_t msg{};
+  msg.utime = 33333;
+  msg.seq = 1;
+  msg.position[0] = 1.0;
+  msg.position[1] = 2.0;
+  msg.orientation[0] = std::cos(0.2);
+  msg.orientation[3] = std::sin(0.2);
+  msg.covariance[0] = msg.covariance[4] = 1e-4;
+  msg.covariance[8] = 1e-6;
+  return msg;
+}
+
+TEST(Convert, OdometryReadingsAreCheckedLikeAnyInput) {
+  OdometryReading r;
+  std::string reason;
+  ASSERT_TRUE(FromOdometry(OdometryMessage(), &r, &reason)) << reason;
+  EXPECT_EQ(r.utime, 33333);
+  EXPECT_EQ(r.seq, 1);
+  EXPECT_NEAR(r.pose.yaw, 0.4, 1e-12);
+  EXPECT_EQ(r.covariance(1, 1), 1e-4);
+  odometry_t bad = OdometryMessage();
+  bad.position[1] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(FromOdometry(bad, &r, &reason));
+  EXPECT_NE(reason.find("non-finite"), std::string::npos);
+  bad = OdometryMessage();
+  for (double& v : bad.orientation) v = 0.0;
+  EXPECT_FALSE(FromOdometry(bad, &r, &reason));
+  EXPECT_NE(reason.find("quaternion"), std::string::npos);
+  bad = OdometryMessage();
+  bad.covariance[0] = -1.0;
+  EXPECT_FALSE(FromOdometry(bad, &r, &reason));
+  EXPECT_NE(reason.find("covariance"), std::string::npos);
 }
 
 }  // namespace

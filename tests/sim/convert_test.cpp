@@ -33,6 +33,30 @@ TEST(Convert, TruthPoseIsWorldFromSensor) {
   EXPECT_NEAR(msg.orientation[3], std::sin(0.25), 1e-12);  // z
 }
 
+TEST(Convert, TruthCovarianceIsZero) {
+  pose_t msg = ToTruthPose(Eigen::Isometry3d::Identity(), 0, 0);
+  for (double v : msg.covariance) EXPECT_EQ(v, 0.0);
+}
+
+TEST(Convert, OdometryCarriesPoseAndIncrementCovariance) {
+  OdometryReading r;
+  r.seq = 4;
+  r.pose = {1.0, -2.0, 0.5};
+  r.covariance << 1e-4, 0, 0, 0, 2e-4, 0, 0, 0, 3e-6;
+  r.covariance(0, 1) = r.covariance(1, 0) = 5e-5;
+  const odometry_t msg = ToOdometry(r, 133333);
+  EXPECT_EQ(msg.seq, 4);
+  EXPECT_EQ(msg.utime, 133333);
+  EXPECT_EQ(msg.position[0], 1.0);
+  EXPECT_EQ(msg.position[1], -2.0);
+  EXPECT_EQ(msg.position[2], 0.0);
+  EXPECT_NEAR(msg.orientation[0], std::cos(0.25), 1e-12);
+  EXPECT_NEAR(msg.orientation[3], std::sin(0.25), 1e-12);
+  EXPECT_EQ(msg.covariance[1], 5e-5);  // row-major
+  EXPECT_EQ(msg.covariance[4], 2e-4);
+  EXPECT_EQ(msg.covariance[8], 3e-6);
+}
+
 TEST(Convert, WorldMapHasOnePlanePerRectangle) {
   WorldOptions options;
   options.generators = {HallwayLoopParams{}};

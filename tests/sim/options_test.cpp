@@ -164,6 +164,20 @@ TEST(SimOptions, HallwayLoopRecesses) {
   EXPECT_NE(e.find("less than recess_spacing"), std::string::npos) << e;
 }
 
+TEST(SimOptions, OdometryIsOffByDefaultAndReadsItsNamedUnits) {
+  EXPECT_FALSE(FromText("").odometry.enabled);
+  const ServiceOptions o = FromText(
+      "sim:\n  odometry:\n    enabled: true\n    rate: 50\n    scale_error_percent: -0.5\n"
+      "    heading_drift_deg_per_m: 1.5\n    noise_deg_per_sqrt_m: 0.1\n    seed: 9\n");
+  EXPECT_TRUE(o.odometry.enabled);
+  EXPECT_EQ(o.odometry.rate_hz, 50.0);
+  EXPECT_EQ(o.odometry.scale_error_percent, -0.5);
+  EXPECT_EQ(o.odometry.heading_drift_deg_per_m, 1.5);
+  EXPECT_EQ(o.odometry.noise_deg_per_sqrt_m, 0.1);
+  EXPECT_EQ(o.odometry.turn_noise_percent, OdometryOptions{}.turn_noise_percent);
+  EXPECT_EQ(o.odometry.seed, 9u);
+}
+
 TEST(SimOptions, NegativeRate) {
   const std::string e = ErrorOf("sim:\n  rate_hz: -5\n");
   EXPECT_NE(e.find("test.yaml:2"), std::string::npos) << e;
@@ -224,6 +238,10 @@ TEST(SimOptions, ImpossibleValuesNameTheirKey) {
       {"sim:\n  sensor:\n    model: tof\n    max_depth: 0.2\n", "sim.sensor.max_depth"},
       {"sim:\n  sensor:\n    model: kinect_v1\n    max_incidence_deg: 95\n",
        "sim.sensor.max_incidence_deg"},
+      {"sim:\n  odometry:\n    rate: -1\n", "sim.odometry.rate"},
+      {"sim:\n  odometry:\n    scale_eror_percent: 1\n", "sim.odometry.scale_eror_percent"},
+      {"sim:\n  odometry:\n    heading_drift_deg_per_m: .nan\n", "sim.odometry.heading_drift"},
+      {"sim:\n  odometry:\n    noise_m_per_sqrt_m: -0.01\n", "sim.odometry.noise_m_per_sqrt_m"},
   };
   for (const auto& [yaml, key] : cases) {
     const std::string e = ErrorOf(yaml);

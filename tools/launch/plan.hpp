@@ -16,8 +16,9 @@ inline const std::string kSourceService = "sim";
 inline const std::string kReplaySource = "logplayer";
 // The services a replay feeds (the simulator's part comes from the log).
 inline const std::vector<std::string> kReplayServices = {"segmenter", "mapper", "logger"};
-// The channels a replay feeds: the simulator's. The services' own outputs are made afresh.
-inline const std::string kReplayChannels = "^(SENSOR_POINTS|SIM_TRUTH|SIM_WORLD)$";
+// The channels a replay feeds: the simulator's (wheel odometry too, when it was on). The
+// services' own outputs are made afresh.
+inline const std::string kReplayChannels = "^(SENSOR_POINTS|SIM_TRUTH|SIM_WORLD|ODOMETRY)$";
 
 // The simulator's channels but the clouds: what a replay plays on the main bus when clouds have
 // a bus of their own.

@@ -43,7 +43,13 @@ double EndWeight(const LearnedFrustum& frustum, const Observation& obs, int e) {
 struct System {
   Matrix2d a = Matrix2d::Zero();
   Vector2d b = Vector2d::Zero();
+  Matrix2d seen = Matrix2d::Zero();  // a without the priors: what the walls in view fix
   void Add(const Vector2d& dir, double value, double weight = 1.0) {
+    AddPrior(dir, value, weight);
+    seen += weight * dir * dir.transpose();
+  }
+  // An equation on the previous or predicted position, not on a wall in view.
+  void AddPrior(const Vector2d& dir, double value, double weight) {
     a += weight * dir * dir.transpose();
     b += weight * dir * value;
   }
@@ -301,8 +307,8 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       const Vector2d open = line_eig.eigenvectors().col(0);
       const double sigma =
           std::max(kTrackedPrediction, kDriftRate * static_cast<double>(predicted_for));
-      sys.Add(open, open.dot(previous.Translation()),
-              std::pow(LearnedFrustum::kEdgeNoise / sigma, 2));
+      sys.AddPrior(open, open.dot(previous.Translation()),
+                   std::pow(LearnedFrustum::kEdgeNoise / sigma, 2));
     }
     Eigen::SelfAdjointEigenSolver<Matrix2d> eig(sys.a);
     const double information = eig.eigenvalues()(0);
@@ -393,7 +399,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       if (placed_ends > 0) {
         const double sigma = std::max(kDriftRate * static_cast<double>(predicted_for), kDriftRate);
         const double w = std::pow(LearnedFrustum::kEdgeNoise / sigma, 2);
-        sys.Add(open, open.dot(previous.Translation()), w);
+        sys.AddPrior(open, open.dot(previous.Translation()), w);
       }
       // The platform drives forwards (as the learnt velocity takes it): along an open direction
       // across the heading the position stays where it was, whatever an end seen at another
@@ -409,6 +415,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
                                         options.prior_weight, options.min_information);
     out.pose = {pos.x(), pos.y(), yaw};
     out.planes = static_cast<int>(planes.size());
+    out.position_information = sys.seen;
     out.status = tracking ? PoseStatus::kTracking : PoseStatus::kMotionModel;
     if (suspect >= 0) {
       // The trial without the worst-fitting wall: kept where the rest still fix the position,

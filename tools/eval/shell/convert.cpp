@@ -6,6 +6,7 @@
 #include <relplane/plane_set_t.hpp>
 
 #include "relplane/common/bus.hpp"
+#include "relplane/common/covariance.hpp"
 
 namespace relplane::eval {
 namespace {
@@ -35,11 +36,17 @@ bool FromMessage(const relplane::pose_t& msg, PoseSample* out, std::string* reas
     *reason = "pose seq " + std::to_string(msg.seq) + ": invalid orientation quaternion";
     return false;
   }
+  std::string why_covariance;
   out->utime = msg.utime;
   out->seq = msg.seq;
   out->position = {msg.position[0], msg.position[1], msg.position[2]};
   out->orientation = q.normalized();
+  if (!geometry::ValidCovariance(msg.covariance, &why_covariance)) {
+    *reason = "pose seq " + std::to_string(msg.seq) + ": " + why_covariance;
+    return false;
+  }
   out->status = msg.status;
+  out->covariance = geometry::CovarianceFromRowMajor(msg.covariance);
   return true;
 }
 

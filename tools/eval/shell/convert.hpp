@@ -15,7 +15,8 @@
 
 namespace relplane::eval {
 
-// False with a reason for a pose with non-finite numbers or a zero quaternion.
+// False with a reason for a pose with non-finite numbers, a zero quaternion or a covariance
+// that is not symmetric positive semi-definite.
 bool FromMessage(const relplane::pose_t& msg, PoseSample* out, std::string* reason);
 // False with a reason for a plane with non-finite numbers.
 bool FromMessage(const relplane::map_t& msg, MapSnapshot* out, std::string* reason);

@@ -34,6 +34,51 @@ std::string Series(const std::vector<ErrorSample>& errors, const Axes& axes, boo
   return "<polyline fill=\"none\" " + std::string(style) + " points=\"" + points + "\"/>\n";
 }
 
+// A panel of a signed error (along or across the truth's heading) with the estimate's own
+// +-2 sigma band shaded behind it: where the error leaves the band, the covariance was too sure.
+constexpr double kBandHeight = 150.0;
+constexpr double kBandGap = 45.0;
+
+std::string SignedPanel(const std::vector<ErrorSample>& errors, const Axes& time, double top,
+                        bool along, const char* title) {
+  const auto value = [along](const ErrorSample& e) { return along ? e.along_m : e.across_m; };
+  const auto sigma = [along](const ErrorSample& e) {
+    return along ? e.sigma_along_m : e.sigma_across_m;
+  };
+  double e_max = 0.0;
+  for (const ErrorSample& e : errors) e_max = std::max(e_max, std::abs(value(e)));
+  const double step = NiceStep(std::max(e_max, 0.01), 2.0);
+  const double e1 = std::max(step, std::ceil(e_max / step) * step);
+  // The band is clipped to the panel: a direction nothing constrains has the prior's sigma.
+  const auto y = [&](double v) {
+    return top + 0.5 * kBandHeight - std::clamp(v, -e1, e1) / e1 * 0.5 * kBandHeight;
+  };
+  std::string out = svg::Text(kLeft, top - 8, title, "start", "font-weight=\"bold\"");
+  for (const double v : {-e1, 0.0, e1}) {
+    out +=
+        svg::Line(kLeft, y(v), kLeft + time.width, y(v), "stroke=\"#eeeeee\" stroke-width=\"1\"");
+    out += svg::Text(kLeft - 6, y(v) + 4, svg::Format("%g", v), "end");
+  }
+  std::string upper, lower, line;
+  double last_x = -1e9;
+  for (const ErrorSample& e : errors) {
+    const double x = time.X(e.t_s);
+    if (x - last_x < 0.5) continue;
+    upper += svg::Format("%.1f,%.1f ", x, y(2.0 * sigma(e)));
+    lower = svg::Format("%.1f,%.1f ", x, y(-2.0 * sigma(e))) + lower;
+    line += svg::Format("%.1f,%.1f ", x, y(value(e)));
+    last_x = x;
+  }
+  if (!line.empty()) {
+    out += "<polygon fill=\"#f4c542\" fill-opacity=\"0.35\" stroke=\"none\" points=\"" + upper +
+           lower + "\"/>\n";
+    out += "<polyline fill=\"none\" stroke=\"#d62828\" stroke-width=\"1.2\" points=\"" + line +
+           "\"/>\n";
+  }
+  out += svg::Line(kLeft, top, kLeft, top + kBandHeight, "stroke=\"black\" stroke-width=\"1\"");
+  return out;
+}
+
 }  // namespace
 
 std::string RenderErrorSvg(const TrajectoryMetrics& trajectory, double width_px) {
@@ -51,7 +96,8 @@ std::string RenderErrorSvg(const TrajectoryMetrics& trajectory, double width_px)
   axes.e1 = std::max(e_step, std::ceil(e_max / e_step) * e_step);
   const double t_step = NiceStep(axes.t1 - axes.t0, 8.0);
 
-  const double height = kTop + kPlotHeight + kBottom;
+  const double band_top = kTop + kPlotHeight + kBottom + kBandGap;
+  const double height = band_top + 2.0 * (kBandHeight + kBandGap);
   std::string out = svg::Header(width, height);
   out += svg::Text(kLeft, 24, "Position error against truth (x-y), matched by seq", "start",
                    "font-size=\"15\" font-weight=\"bold\"");
@@ -74,7 +120,8 @@ std::string RenderErrorSvg(const TrajectoryMetrics& trajectory, double width_px)
   out += svg::Line(kLeft, kTop, kLeft, kTop + kPlotHeight, "stroke=\"black\" stroke-width=\"1\"");
   out += svg::Line(kLeft, kTop + kPlotHeight, kLeft + axes.width, kTop + kPlotHeight,
                    "stroke=\"black\" stroke-width=\"1\"");
-  out += svg::Text(kLeft + 0.5 * axes.width, height - 10, "time (s)", "middle");
+  out +=
+      svg::Text(kLeft + 0.5 * axes.width, kTop + kPlotHeight + kBottom - 10, "time (s)", "middle");
   out += svg::Format(
       "<text x=\"18\" y=\"%.1f\" text-anchor=\"middle\" transform=\"rotate(-90 18 %.1f)\">"
       "position error (m)</text>\n",
@@ -87,6 +134,11 @@ std::string RenderErrorSvg(const TrajectoryMetrics& trajectory, double width_px)
   out += Series(errors, axes, false, "stroke=\"#d62828\" stroke-width=\"1.5\"");
   out += Series(errors, axes, true,
                 "stroke=\"#1f5fbf\" stroke-width=\"1.2\" stroke-dasharray=\"5 3\"");
+
+  out += SignedPanel(errors, axes, band_top, true,
+                     "Along the true heading (m), shaded: the estimate's own +-2 sigma");
+  out += SignedPanel(errors, axes, band_top + kBandHeight + kBandGap, false,
+                     "Across the true heading, to the left (m), shaded: +-2 sigma");
 
   const double lx = kLeft + axes.width - 260;
   out += svg::Line(lx, kTop + 14, lx + 26, kTop + 14, "stroke=\"#d62828\" stroke-width=\"1.5\"");

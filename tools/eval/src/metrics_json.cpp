@@ -39,6 +39,17 @@ void WriteTrajectory(JsonWriter& json, const TrajectoryMetrics& t) {
   json.Field("segment_m", t.rpe_segment_m).Field("segments", t.rpe_segments);
   json.Field("translation_m_per_m", t.rpe_translation_per_m);
   json.Field("rotation_deg_per_m", t.rpe_rotation_deg_per_m).EndObject();
+  // Frames whose error lies within 3 sigma of the covariance POSE carried, overall and per status.
+  const auto consistency = [&json](const std::string& key, const Consistency& c) {
+    json.Key(key).BeginObject(true);
+    json.Field("frames", c.frames).Field("position_within_3sigma", c.position_within_3sigma);
+    json.Field("yaw_within_3sigma", c.yaw_within_3sigma).EndObject();
+  };
+  consistency("consistency", t.consistency);
+  json.Key("consistency_by_status").BeginObject();
+  const char* names[] = {"truth", "tracking", "motion_model", "initializing", "lost"};
+  for (int s = 1; s < 5; ++s) consistency(names[s], t.consistency_by_status[s]);
+  json.EndObject();
   json.EndObject();
 }
 

@@ -15,6 +15,22 @@ geometry::Pose2 PlanarPose(const PoseSample& p) {
 
 double Rms(double sum_squares, int64_t n) { return n > 0 ? std::sqrt(sum_squares / n) : kNaN; }
 
+// Rounding left in a covariance, and a floor under it so a zero covariance is invertible.
+constexpr double kVarianceFloor = 1e-12;  // m^2 or rad^2
+
+struct ConsistencyCount {
+  int64_t frames = 0, position = 0, yaw = 0;
+  Consistency Share() const {
+    Consistency c;
+    c.frames = frames;
+    if (frames > 0) {
+      c.position_within_3sigma = static_cast<double>(position) / static_cast<double>(frames);
+      c.yaw_within_3sigma = static_cast<double>(yaw) / static_cast<double>(frames);
+    }
+    return c;
+  }
+};
+
 // Relative pose error (Sturm et al.'s RPE, by distance travelled instead of time) over segments
 // of at least `segment_m` of truth path, normalised per metre.
 void ComputeRpe(const std::vector<MatchedPose>& matched, const std::vector<double>& path,
@@ -43,6 +59,15 @@ void ComputeRpe(const std::vector<MatchedPose>& matched, const std::vector<doubl
 }
 
 }  // namespace
+
+bool PositionWithin3Sigma(const Eigen::Vector2d& error, const Eigen::Matrix2d& covariance) {
+  const Eigen::Matrix2d c = covariance + kVarianceFloor * Eigen::Matrix2d::Identity();
+  return error.dot(c.ldlt().solve(error)) <= 9.0;
+}
+
+bool YawWithin3Sigma(double error_rad, double variance) {
+  return error_rad * error_rad <= 9.0 * (std::max(variance, 0.0) + kVarianceFloor);
+}
 
 std::vector<MatchedPose> MatchBySeq(const std::vector<PoseSample>& estimate,
                                     const std::vector<PoseSample>& truth) {
@@ -107,6 +132,8 @@ TrajectoryMetrics ComputeTrajectoryMetrics(const std::vector<MatchedPose>& match
   double sum_raw = 0.0;
   double sum_aligned = 0.0;
   double sum_yaw = 0.0;
+  ConsistencyCount all;
+  ConsistencyCount by_status[5];
   m.ate_max_m = 0.0;
   m.yaw_max_deg = 0.0;
   for (size_t i = 0; i < matched.size(); ++i) {
@@ -117,6 +144,28 @@ TrajectoryMetrics ComputeTrajectoryMetrics(const std::vector<MatchedPose>& match
     e.yaw_deg = geometry::WrapAngle(geometry::YawOf(matched[i].estimate.orientation) -
                                     geometry::YawOf(matched[i].truth.orientation)) *
                 kRadToDeg;
+    const PoseSample& estimate = matched[i].estimate;
+    const Eigen::Vector2d error = est[i] - truth[i];
+    const Eigen::Vector2d heading =
+        Eigen::Rotation2Dd(geometry::YawOf(matched[i].truth.orientation)) *
+        Eigen::Vector2d::UnitX();
+    const Eigen::Vector2d left(-heading.y(), heading.x());
+    const Eigen::Matrix2d cov_xy = estimate.covariance.topLeftCorner<2, 2>();
+    e.along_m = error.dot(heading);
+    e.across_m = error.dot(left);
+    e.sigma_along_m = std::sqrt(std::max(heading.dot(cov_xy * heading), 0.0));
+    e.sigma_across_m = std::sqrt(std::max(left.dot(cov_xy * left), 0.0));
+    e.status = estimate.status;
+    const bool position_ok = PositionWithin3Sigma(error, cov_xy);
+    const bool yaw_ok = YawWithin3Sigma(e.yaw_deg / kRadToDeg, estimate.covariance(2, 2));
+    for (ConsistencyCount* c :
+         {&all,
+          estimate.status >= 0 && estimate.status < 5 ? &by_status[estimate.status] : nullptr}) {
+      if (c == nullptr) continue;
+      ++c->frames;
+      c->position += position_ok ? 1 : 0;
+      c->yaw += yaw_ok ? 1 : 0;
+    }
     sum_raw += e.position_m * e.position_m;
     sum_aligned += e.aligned_m * e.aligned_m;
     sum_yaw += e.yaw_deg * e.yaw_deg;
@@ -128,6 +177,8 @@ TrajectoryMetrics ComputeTrajectoryMetrics(const std::vector<MatchedPose>& match
   m.ate_aligned_rmse_m = Rms(sum_aligned, m.matched);
   m.ate_final_m = m.errors.back().position_m;
   m.yaw_rmse_deg = Rms(sum_yaw, m.matched);
+  m.consistency = all.Share();
+  for (int s = 0; s < 5; ++s) m.consistency_by_status[s] = by_status[s].Share();
   ComputeRpe(matched, path, &m);
   return m;
 }

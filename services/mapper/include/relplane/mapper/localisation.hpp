@@ -24,6 +24,10 @@ struct PoseEstimate {
   bool end_moved = false;
   // rad: how far off the heading may be (the walls' fit sigmas and short-piece bias combined).
   double yaw_sigma = 0.0;
+  // What the walls' lines and ends in view fixed of the position, without the previous pose:
+  // the sum of w d d^T over the solve's equations, weight 1 for a line good to
+  // LearnedFrustum::kEdgeNoise (observability.hpp turns it into a covariance).
+  Eigen::Matrix2d position_information = Eigen::Matrix2d::Zero();
 };
 
 // One observation of a mapped wall: what is seen now and where the map has it.

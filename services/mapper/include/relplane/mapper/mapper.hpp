@@ -4,10 +4,12 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "relplane/mapper/localisation.hpp"
 #include "relplane/mapper/observation.hpp"
+#include "relplane/mapper/odometry.hpp"
 #include "relplane/mapper/options.hpp"
 #include "relplane/mapper/state.hpp"
 
@@ -49,6 +51,12 @@ class Mapper {
 
   // Processes one plane set; `iteration` must increase (gaps are fine). Returns the pose.
   PoseEstimate Process(int64_t iteration, const std::vector<PlaneInput>& planes);
+  // The same with wheel odometry's motion since the previous plane set, when ODOMETRY is on
+  // the bus (odometry.hpp). The algorithm does not take it yet: the pose is the planes' alone.
+  PoseEstimate Process(int64_t iteration, const std::vector<PlaneInput>& planes,
+                       const std::optional<OdometryIncrement>& /*odometry*/) {
+    return Process(iteration, planes);
+  }
 
   // True when the map changed since the last call to TakeMapChanged().
   bool TakeMapChanged();

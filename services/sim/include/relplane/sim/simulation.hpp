@@ -40,8 +40,9 @@ class Simulation {
   int64_t NumIterations() const { return num_iterations_; }
   // Simulated capture time of iteration k in microseconds: k * 1e6 / rate_hz.
   int64_t Utime(int64_t k) const;
-  // The sensor's floor-plan pose at iteration k.
+  // The sensor's floor-plan pose at iteration k, and at simulated time t seconds.
   geometry::Pose2 PlanarPose(int64_t k) const;
+  geometry::Pose2 PlanarPoseAt(double t) const { return trajectory_.At(t); }
   // The true sensor pose at iteration k: world <- sensor, at the mount height.
   Eigen::Isometry3d SensorPose(int64_t k) const;
   // The frame captured at iteration k.

@@ -33,6 +33,22 @@ struct ErrorSample {
   double position_m = 0.0;  // |estimate - truth| in x-y, no alignment
   double aligned_m = 0.0;   // the same after SE(2) alignment
   double yaw_deg = 0.0;     // wrapped estimate yaw - truth yaw
+  // Signed error along the truth's heading and across it (left), no alignment, and the
+  // estimate's standard deviation along each (from POSE's covariance).
+  double along_m = 0.0;
+  double across_m = 0.0;
+  double sigma_along_m = 0.0;
+  double sigma_across_m = 0.0;
+  int status = 0;  // the estimate's pose status
+};
+
+// The share of frames whose error lies within 3 sigma of the covariance the estimate came
+// with: the x-y error's Mahalanobis distance (2 dof: 98.9 % of a consistent estimate's frames),
+// and the heading error against its own sigma (99.7 %).
+struct Consistency {
+  int64_t frames = 0;
+  double position_within_3sigma = kNaN;
+  double yaw_within_3sigma = kNaN;
 };
 
 struct TrajectoryMetrics {
@@ -51,8 +67,16 @@ struct TrajectoryMetrics {
   int64_t rpe_segments = 0;
   double rpe_translation_per_m = kNaN;
   double rpe_rotation_deg_per_m = kNaN;
+  Consistency consistency;
+  // The same per pose status (index: PoseStatus), frames of that status only.
+  Consistency consistency_by_status[5];
   std::vector<ErrorSample> errors;
 };
+
+// Whether an error lies within 3 sigma of its covariance (x, y block: Mahalanobis distance;
+// a zero covariance holds only an error of zero, to rounding).
+bool PositionWithin3Sigma(const Eigen::Vector2d& error, const Eigen::Matrix2d& covariance);
+bool YawWithin3Sigma(double error_rad, double variance);
 
 TrajectoryMetrics ComputeTrajectoryMetrics(const std::vector<MatchedPose>& matched,
                                            double rpe_segment_m);

@@ -27,6 +27,8 @@ struct PoseSample {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
   int status = 0;
+  // (x, y, yaw), world frame: the estimate's (POSE) or zero (SIM_TRUTH, exact).
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
 // One plane of a map (MAP or SIM_WORLD), world frame.
