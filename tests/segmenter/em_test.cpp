@@ -75,7 +75,7 @@ TEST(EStep, ResponsibilitiesSumToOneAndFavourTheNearPlane) {
   // On a plane: its Gaussian peak against the constant outlier density (the other plane is
   // beyond the cut-off).
   const float peak = 1.0f / (std::sqrt(2.0f * static_cast<float>(M_PI)) * a.sigma);
-  const float on_plane = peak / (peak + Options{}.outlier_density);
+  const float on_plane = peak / (peak + Options{}.noise.outlier_density);
   EXPECT_NEAR(r.At(0, 0), on_plane, 1e-5);
   EXPECT_NEAR(r.At(1, 1), on_plane, 1e-5);
   EXPECT_GT(r.Outlier(2), 0.99f);
@@ -88,7 +88,7 @@ TEST(EStep, RangeNoiseWidensFarPoints) {
   EmPlane floor;
   floor.sigma = 0.005f;
   Options o;
-  o.range_noise = 0.003f;  // 4.8 cm at 4 m
+  o.noise.range_noise = 0.003f;  // 4.8 cm at 4 m
   Responsibilities r;
   EStep(c, {floor}, o, &r);
   EXPECT_GT(r.Outlier(0), 0.9f);  // 6 sigma at 1 m
@@ -105,7 +105,7 @@ TEST(EStep, ReevaluatingOnlyTheMovedPlanesGivesTheFullResult) {
   const auto wall = Patch({4.5, -2, -1}, {0, 4, 0}, {0, 0, 2.5}, 300, 0.01, &rng);
   const Cloud c = ToCloud({floor, wall});
   Options o;
-  o.range_noise = 0.003f;
+  o.noise.range_noise = 0.003f;
   std::vector<EmPlane> planes = {Perturbed({0, 0, 1}, 1.0, 0.02, 0.01),
                                  Perturbed({1, 0, 0}, -4.5, 0.02, 0.01)};
   Responsibilities partial, full;

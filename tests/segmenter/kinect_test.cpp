@@ -25,8 +25,8 @@ constexpr int kLarge = 5000;  // "large": about 2% of a 640x480 frame
 // noise close up, growing with the square of the range.
 Options KinectOptions() {
   Options o;
-  o.sigma_max = 0.007f;
-  o.range_noise = 0.003f;
+  o.noise.sigma_max = 0.007f;
+  o.noise.range_noise = 0.003f;
   return o;
 }
 

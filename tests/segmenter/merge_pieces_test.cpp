@@ -64,8 +64,8 @@ TEST(MergePieces, AFaceFittedAsTwoPlanesNineDegreesApartIsOne) {
 
 TEST(MergePieces, PiecesOverEachOtherBeyondTheAngleStayApart) {
   Options options;
-  EXPECT_EQ(Merged(Piece(2.0f, 1.1f, 0.3f, 0.5f * options.overlap_merge_angle_deg + 1.0f),
-                   Piece(2.0f, 1.1f, 0.3f, -0.5f * options.overlap_merge_angle_deg - 1.0f)),
+  EXPECT_EQ(Merged(Piece(2.0f, 1.1f, 0.3f, 0.5f * options.merge.overlap_angle_deg + 1.0f),
+                   Piece(2.0f, 1.1f, 0.3f, -0.5f * options.merge.overlap_angle_deg - 1.0f)),
             2u);
 }
 

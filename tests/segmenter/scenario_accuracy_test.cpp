@@ -40,23 +40,21 @@ TEST(ScenarioAccuracy, TwoCentimetreNoise) { Check(0.02, 1.0, 0.02, 0.9); }
 // loop_other_sensor at 1 cm, noise seed 9, its first 111 frames, segmented in order (each
 // frame's mixture starts from the last one's planes): around frame 100 a pilaster's 0.3 m side
 // is 2 m ahead. EM fitted it as two planes 9 degrees apart, each with about half its points over
-// the whole face, in 13 of those frames (options.overlap_merge_angle_deg).
+// the whole face, in 13 of those frames (options.merge.overlap_angle_deg).
 TEST(ScenarioAccuracy, AFaceSeenAsTwoPlanesIsOne) {
   const std::string file = std::string(RELPLANE_SOURCE_DIR) + "/scenarios/loop_other_sensor.yaml";
   Options split;
-  split.overlap_merge_angle_deg = 0.0f;  // pieces over each other merge only as near-identical
+  split.merge.overlap_angle_deg = 0.0f;  // pieces over each other merge only as near-identical
   const int before = FramesWithAWallTwice(file, 0.01, 9, 0, 110, split);
   std::printf("frames with a wall twice: %d of 111 without the overlap merge\n", before);
   ASSERT_GT(before, 5) << "the frames no longer show the split";
   EXPECT_EQ(FramesWithAWallTwice(file, 0.01, 9, 0, 110, Options{}), 0);
 }
 
-std::vector<WallSighting> Sightings(uint32_t seed, int64_t first, int64_t last, bool line_fit,
+std::vector<WallSighting> Sightings(uint32_t seed, int64_t first, int64_t last,
                                     const Eigen::Vector2d& wall) {
   const std::string file = std::string(RELPLANE_SOURCE_DIR) + "/scenarios/loop_other_sensor.yaml";
-  Options options;
-  options.dominant_line_fit = line_fit;
-  return WallSightings(file, 0.01, seed, first, last, options, wall);
+  return WallSightings(file, 0.01, seed, first, last, Options{}, wall);
 }
 
 template <typename Pred>
@@ -67,17 +65,15 @@ long Count(const std::vector<WallSighting>& sightings, Pred pred) {
 // loop_other_sensor at 1 cm, noise seed 41, frames 40-80: a pilaster's 0.4 m front (y = 0.95,
 // x from 6 to 6.4) 4-3 m ahead, at a grazing angle, its side square on. EM gave the front's piece
 // a column or two of the side at the corner, and its fit leaned up to 7.7 degrees in a third of
-// those frames; the mapper made those sightings a second wall (options.dominant_line_fit).
+// those frames without the line fit; the mapper made those sightings a second wall
+// (DominantLineFit).
 TEST(ScenarioAccuracy, AGrazingPilasterFrontDoesNotLeanTowardsItsSide) {
-  const auto before = Sightings(41, 40, 80, false, {6.2, 0.95});
-  const auto after = Sightings(41, 40, 80, true, {6.2, 0.95});
+  const auto sightings = Sightings(41, 40, 80, {6.2, 0.95});
   auto leaning = [](const WallSighting& s) { return s.angle_deg > 2.5; };
-  std::printf("front sightings over 2.5 degrees off: %ld of %zu -> %ld of %zu\n",
-              Count(before, leaning), before.size(), Count(after, leaning), after.size());
-  ASSERT_GE(before.size(), 35u);
-  ASSERT_EQ(after.size(), before.size());
-  ASSERT_GE(Count(before, leaning), 8) << "the sightings no longer lean";
-  EXPECT_EQ(Count(after, leaning), 0);
+  std::printf("front sightings over 2.5 degrees off: %ld of %zu\n", Count(sightings, leaning),
+              sightings.size());
+  ASSERT_GE(sightings.size(), 35u);
+  EXPECT_EQ(Count(sightings, leaning), 0);
 }
 
 // The same on noise seed 47, frames 170-210, the pilaster at x = 11 closing in from 2.5 to
@@ -86,15 +82,12 @@ TEST(ScenarioAccuracy, AGrazingPilasterFrontDoesNotLeanTowardsItsSide) {
 // its length from those sightings and put the front 10 cm off. With the front's plane set to its
 // line and the frame assigned again, the side keeps its corner.
 TEST(ScenarioAccuracy, APilasterSideKeepsTheCornerItSharesWithAGrazingFront) {
-  const auto before = Sightings(47, 170, 210, false, {11.0, 1.1});
-  const auto after = Sightings(47, 170, 210, true, {11.0, 1.1});
+  const auto sightings = Sightings(47, 170, 210, {11.0, 1.1});
   auto short_side = [](const WallSighting& s) { return s.length_m < 0.25; };
-  std::printf("side sightings under 0.25 m: %ld of %zu -> %ld of %zu\n", Count(before, short_side),
-              before.size(), Count(after, short_side), after.size());
-  ASSERT_GE(before.size(), 35u);
-  ASSERT_EQ(after.size(), before.size());
-  ASSERT_GE(Count(before, short_side), 15) << "the side is no longer seen short";
-  EXPECT_LE(Count(after, short_side), 2);
+  std::printf("side sightings under 0.25 m: %ld of %zu\n", Count(sightings, short_side),
+              sightings.size());
+  ASSERT_GE(sightings.size(), 35u);
+  EXPECT_LE(Count(sightings, short_side), 2);
 }
 
 }  // namespace

@@ -103,7 +103,7 @@ TEST(Segmenter, SubsampledDescriptionMatchesTheWholeCloud) {
   sensor.height = 480;
   const Scan scan = RenderUnorganized(testing::Office(), sensor);
   Options whole_options;
-  whole_options.describe_points_max = 0;
+  whole_options.description.points_max = 0;
   const Result whole = Segmenter(whole_options).Segment(scan.cloud);
   const Result sub = Segmenter().Segment(scan.cloud);
   ASSERT_EQ(sub.planes.size(), whole.planes.size());
@@ -235,9 +235,9 @@ TEST(Segmenter, ShortWallPiecesBesideADoorAreNotTiltedWithTheRayNoiseFit) {
   // A wall 0.9 m ahead with a 1 m door centred in the view of a 200 x 150, 70 degree sensor:
   // 0.15 m of wall each side, seen off to one side, the room beyond 4 m ahead. The noise
   // (1 cm) moves each point along its ray, and the rays to a piece all lean one way: a plain
-  // least-squares fit of each piece tilted by 1.7 degrees, its door end nearer the sensor
-  // (options.ray_noise_fit off, the default). One piece's fit varies by about 0.5 degrees from
-  // frame to frame; the mean of 20 by about 0.1.
+  // least-squares fit of each piece tilts by about 1.7 degrees, its door end nearer the sensor
+  // (FitOutRayNoise takes that out). One piece's fit varies by about 0.5 degrees from frame to
+  // frame; the mean of 20 by about 0.1.
   const double wall = 0.9, half = 0.5, h = 2.5;
   const std::vector<Rect> world = {
       {{-1, -3, -1}, {8, 0, 0}, {0, 6, 0}},           // floor
@@ -259,9 +259,7 @@ TEST(Segmenter, ShortWallPiecesBesideADoorAreNotTiltedWithTheRayNoiseFit) {
     sensor.seed = 100 + frame;
     sensor.world_from_sensor = Eigen::Isometry3d::Identity();
     const Scan scan = Render(world, sensor);
-    Options options;
-    options.ray_noise_fit = true;
-    Segmenter segmenter(options);
+    Segmenter segmenter;
     for (const DetectedPlane& p : segmenter.Segment(scan.cloud).planes) {
       if (std::fabs(p.normal.x()) < 0.9f || std::fabs(p.centroid.x() - wall) > 0.1) continue;
       // The normal's lean along the wall, positive where the door end is further away.

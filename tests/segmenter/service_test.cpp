@@ -25,31 +25,63 @@ ServiceOptions FromYaml(const std::string& yaml) {
 
 TEST(ServiceOptions, ReadsItsSectionAndRefusesUnknownOrBadKeys) {
   const ServiceOptions o = FromYaml(
-      "sim: {rate_hz: 10}\nsegmenter:\n  sigma_max: 0.007\n  range_noise: 0.003\n"
-      "  max_points: 5000\n  min_points: 200\n");
-  EXPECT_FLOAT_EQ(o.segmenter.sigma_max, 0.007f);
-  EXPECT_FLOAT_EQ(o.segmenter.range_noise, 0.003f);
-  EXPECT_EQ(o.segmenter.min_points, 200);
+      "sim: {rate_hz: 10}\nsegmenter:\n  noise: {sigma_max: 0.007, range_noise: 0.003}\n"
+      "  em: {iterations: 5, min_support: 20}\n  proposals: {max_per_round: 3}\n"
+      "  merge: {overlap_angle_deg: 0}\n  assignment: {inlier_sigmas: 2.5}\n"
+      "  extents: {min_points: 200}\n  description: {points_max: 0}\n"
+      "  max_points: 5000\n  seed: 7\n");
+  EXPECT_FLOAT_EQ(o.segmenter.noise.sigma_max, 0.007f);
+  EXPECT_FLOAT_EQ(o.segmenter.noise.range_noise, 0.003f);
+  EXPECT_EQ(o.segmenter.em.iterations, 5);
+  EXPECT_EQ(o.segmenter.em.min_support, 20);
+  EXPECT_EQ(o.segmenter.proposals.max_per_round, 3);
+  EXPECT_FLOAT_EQ(o.segmenter.merge.overlap_angle_deg, 0.0f);
+  EXPECT_FLOAT_EQ(o.segmenter.assignment.inlier_sigmas, 2.5f);
+  EXPECT_EQ(o.segmenter.extents.min_points, 200);
+  EXPECT_EQ(o.segmenter.description.points_max, 0);
+  EXPECT_EQ(o.segmenter.seed, 7u);
   EXPECT_EQ(o.max_points, 5000);
-  EXPECT_EQ(FromYaml("segmenter: {}\n").segmenter.min_points, Options{}.min_points);
-  EXPECT_THROW(FromYaml("segmenter:\n  sigma_mx: 0.01\n"), config::ConfigError);
-  EXPECT_THROW(FromYaml("segmenter:\n  cell_size: -1\n"), config::ConfigError);
-  EXPECT_THROW(FromYaml("segmenter:\n  sigma_min: 0.05\n  sigma_max: 0.01\n"), config::ConfigError);
-  EXPECT_THROW(FromYaml("segmenter:\n  min_points: many\n"), config::ConfigError);
-  // The wall-end, ray-noise and line-fit options (on by default) are turned off from the
-  // scenario or with --set.
-  const ServiceOptions plain = FromYaml(
-      "segmenter:\n  wall_end_estimate: false\n  drop_pieceless_planes: false\n"
-      "  ray_noise_fit: false\n  dominant_line_fit: false\n");
-  EXPECT_TRUE(Options{}.wall_end_estimate);
-  EXPECT_TRUE(Options{}.drop_pieceless_planes);
-  EXPECT_TRUE(Options{}.ray_noise_fit);
-  EXPECT_TRUE(Options{}.dominant_line_fit);
-  EXPECT_FALSE(plain.segmenter.wall_end_estimate);
-  EXPECT_FALSE(plain.segmenter.drop_pieceless_planes);
-  EXPECT_FALSE(plain.segmenter.ray_noise_fit);
-  EXPECT_FALSE(plain.segmenter.dominant_line_fit);
-  EXPECT_THROW(FromYaml("segmenter:\n  wall_end_estimate: sometimes\n"), config::ConfigError);
+  EXPECT_EQ(FromYaml("segmenter: {}\n").segmenter.extents.min_points, Options{}.extents.min_points);
+  EXPECT_THROW(FromYaml("segmenter:\n  noise: {sigma_mx: 0.01}\n"), config::ConfigError);
+  EXPECT_THROW(FromYaml("segmenter:\n  nois: {sigma_max: 0.01}\n"), config::ConfigError);
+  EXPECT_THROW(FromYaml("segmenter:\n  extents: {cell_size: -1}\n"), config::ConfigError);
+  EXPECT_THROW(FromYaml("segmenter:\n  noise: {sigma_min: 0.05, sigma_max: 0.01}\n"),
+               config::ConfigError);
+  EXPECT_THROW(FromYaml("segmenter:\n  extents: {min_points: many}\n"), config::ConfigError);
+  EXPECT_THROW(FromYaml("segmenter:\n  noise: 0.01\n"), config::ConfigError);
+}
+
+TEST(ServiceOptions, TheKinectPresetLoads) {
+  const ServiceOptions o =
+      LoadServiceOptions(std::string(RELPLANE_SOURCE_DIR) + "/services/segmenter/kinect.yaml");
+  EXPECT_FLOAT_EQ(o.segmenter.noise.sigma_max, 0.007f);
+  EXPECT_FLOAT_EQ(o.segmenter.noise.range_noise, 0.003f);
+}
+
+std::string ErrorOf(const std::string& yaml) {
+  try {
+    FromYaml(yaml);
+  } catch (const config::ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ServiceOptions, AKeyOfTheFlatLayoutNamesWhereItMoved) {
+  EXPECT_NE(ErrorOf("segmenter:\n  sigma_max: 0.007\n").find("moved to 'noise.sigma_max'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf("segmenter:\n  min_em_points: 9\n").find("moved to 'em.min_support'"),
+            std::string::npos);
+  EXPECT_NE(
+      ErrorOf("segmenter:\n  describe_points_max: 0\n").find("moved to 'description.points_max'"),
+      std::string::npos);
+  // The switches of settled choices are gone: the segmenter always does what they turned on.
+  for (const char* key :
+       {"wall_end_estimate", "ray_noise_fit", "dominant_line_fit", "drop_pieceless_planes"}) {
+    EXPECT_NE(ErrorOf(std::string("segmenter:\n  ") + key + ": false\n").find("always on"),
+              std::string::npos)
+        << key;
+  }
 }
 
 TEST(ServiceOptions, SensorPresetByName) {

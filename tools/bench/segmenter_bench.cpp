@@ -71,18 +71,6 @@ void BM_Synthetic160x120Path(benchmark::State& state) {
   static const auto frames = OfficePath(160, 120);
   Run(state, frames, Options{}, false);
 }
-// With the wall-end estimate and pieceless planes dropped (options.hpp, off by default): the
-// cost of both, on the noise-free frames where pieceless planes are most common.
-Options WallEndOptions() {
-  Options o;
-  o.wall_end_estimate = true;
-  o.drop_pieceless_planes = true;
-  return o;
-}
-void BM_Synthetic160x120PathWallEnds(benchmark::State& state) {
-  static const auto frames = OfficePath(160, 120);
-  Run(state, frames, WallEndOptions(), false);
-}
 void BM_Synthetic160x120Cold(benchmark::State& state) {
   static const auto frames = OfficeFrames(160, 120, false);
   Run(state, frames, Options{}, true);
@@ -101,10 +89,6 @@ void BM_Unorganized640x480Cold(benchmark::State& state) {
 void BM_Organized640x480Stream(benchmark::State& state) {
   static const auto frames = OfficeFrames(640, 480, false);
   Run(state, frames, Options{}, false);
-}
-void BM_Organized640x480StreamWallEnds(benchmark::State& state) {
-  static const auto frames = OfficeFrames(640, 480, false);
-  Run(state, frames, WallEndOptions(), false);
 }
 void BM_Unorganized320x240Stream(benchmark::State& state) {
   static const auto frames = OfficeFrames(320, 240, true);
@@ -128,8 +112,8 @@ std::vector<Cloud> KinectFrames() {
 
 Options KinectOptions() {  // as services/segmenter/kinect.yaml
   Options o;
-  o.sigma_max = 0.007f;
-  o.range_noise = 0.003f;
+  o.noise.sigma_max = 0.007f;
+  o.noise.range_noise = 0.003f;
   return o;
 }
 
@@ -144,8 +128,8 @@ void BM_Kinect640x480Cold(benchmark::State& state) {
 
 // loop_other_sensor at σ = 1 cm (200 x 150, 70 degrees), noise seed 41, frames 40-80: a
 // pilaster 4-3 m ahead whose front is seen at a grazing angle, a third of whose frames lean
-// between the front and its side (options.dominant_line_fit: the line fit, then the frame
-// assigned and described again). With the option off: what it costs.
+// between the front and its side (DominantLineFit: the line fit, then the frame assigned and
+// described again).
 std::vector<Cloud> PilasterFrames() {
   relplane::sim::ServiceOptions options = relplane::sim::LoadServiceOptions(
       std::string(RELPLANE_SOURCE_DIR) + "/scenarios/loop_other_sensor.yaml");
@@ -164,28 +148,19 @@ void BM_Pilaster200x150Path(benchmark::State& state) {
   static const auto frames = PilasterFrames();
   Run(state, frames, Options{}, false);
 }
-void BM_Pilaster200x150PathNoLineFit(benchmark::State& state) {
-  static const auto frames = PilasterFrames();
-  Options o;
-  o.dominant_line_fit = false;
-  Run(state, frames, o, false);
-}
 
 #define SEGMENTER_BENCHMARK(fn) \
   BENCHMARK(fn)->Unit(benchmark::kMillisecond)->Repetitions(9)->ReportAggregatesOnly(true)
 SEGMENTER_BENCHMARK(BM_Synthetic160x120Stream);
 SEGMENTER_BENCHMARK(BM_Synthetic160x120Path);
-SEGMENTER_BENCHMARK(BM_Synthetic160x120PathWallEnds);
 SEGMENTER_BENCHMARK(BM_Synthetic160x120Cold);
 SEGMENTER_BENCHMARK(BM_Unorganized640x480Stream);
 SEGMENTER_BENCHMARK(BM_Unorganized640x480Cold);
 SEGMENTER_BENCHMARK(BM_Organized640x480Stream);
-SEGMENTER_BENCHMARK(BM_Organized640x480StreamWallEnds);
 SEGMENTER_BENCHMARK(BM_Unorganized320x240Stream);
 SEGMENTER_BENCHMARK(BM_Kinect640x480Stream);
 SEGMENTER_BENCHMARK(BM_Kinect640x480Cold);
 SEGMENTER_BENCHMARK(BM_Pilaster200x150Path);
-SEGMENTER_BENCHMARK(BM_Pilaster200x150PathNoLineFit);
 
 }  // namespace
 

@@ -81,8 +81,8 @@ template <bool kRangeNoise>
   const int* rows = reinterpret_cast<const int*>(row);
   size_t i = 0;
   for (; i + 8 <= n; i += 8) {
-    const __m256i j = _mm256_add_epi32(
-        _mm256_loadu_si256(reinterpret_cast<const __m256i*>(label + i)), one);
+    const __m256i j =
+        _mm256_add_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(label + i)), one);
     const __m256i o = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(other + i));
     const __m256i bits =
         _mm256_srlv_epi32(_mm256_i32gather_epi32(rows, j, 4), _mm256_and_si256(o, five_bits));
@@ -116,8 +116,8 @@ RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmP
   }
   // Scores are squared distances in units of the point's threshold,
   // d^2 / (t^2 (sigma^2 + (k r^2)^2)): below 1 is an inlier, the smallest wins.
-  const float t2 = options.inlier_sigmas * options.inlier_sigmas;
-  const bool point_noise = HasPointNoise(options.sensor, options.range_noise);
+  const float t2 = options.assignment.inlier_sigmas * options.assignment.inlier_sigmas;
+  const bool point_noise = HasPointNoise(options.sensor, options.noise.range_noise);
   std::vector<PlaneScore> scores(k);
   for (size_t j = 0; j < k; ++j) {
     const EmPlane& p = planes[j];
@@ -149,7 +149,7 @@ RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmP
     }
     if (point_noise) {
       for (size_t i = 0; i < kGroup; ++i) {
-        q[i] = PointNoiseVariance(options.sensor, options.range_noise, x[i], y[i], z[i]);
+        q[i] = PointNoiseVariance(options.sensor, options.noise.range_noise, x[i], y[i], z[i]);
       }
       RankGroup<true>(x, y, z, q, scores.data(), k, t2, l, l2);
     } else {
@@ -173,7 +173,8 @@ RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmP
     }
     const uint32_t* __restrict row = rows.data();
 #if RELPLANE_AVX2_AMBIGUOUS
-    const size_t done = __builtin_cpu_supports("avx2") ? AmbiguousAvx2(n, label, other, row, amb) : 0;
+    const size_t done =
+        __builtin_cpu_supports("avx2") ? AmbiguousAvx2(n, label, other, row, amb) : 0;
 #else
     const size_t done = 0;
 #endif

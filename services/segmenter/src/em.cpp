@@ -112,9 +112,9 @@ float Sum(const float* __restrict a, int n) {
 
 void RangeVariance(const Cloud& points, const Options& options, std::vector<float>* q) {
   q->assign(points.size(), 0.0f);
-  if (!HasPointNoise(options.sensor, options.range_noise)) return;
+  if (!HasPointNoise(options.sensor, options.noise.range_noise)) return;
   for (size_t i = 0; i < points.size(); ++i) {
-    (*q)[i] = PointNoiseVariance(options.sensor, options.range_noise, points.x[i], points.y[i],
+    (*q)[i] = PointNoiseVariance(options.sensor, options.noise.range_noise, points.x[i], points.y[i],
                                  points.z[i]);
   }
 }
@@ -124,11 +124,11 @@ void RangeVariance(const Cloud& points, const Options& options, std::vector<floa
 RELPLANE_SIMD_CLONES void EStep(const Cloud& points, const std::vector<EmPlane>& planes,
                                 const Options& options, Responsibilities* resp,
                                 const std::vector<uint8_t>* refit) {
-  const float outlier_density = options.outlier_density;
+  const float outlier_density = options.noise.outlier_density;
   const int n = static_cast<int>(points.size());
   const int k = static_cast<int>(planes.size());
   if (refit == nullptr) RangeVariance(points, options, &resp->range_variance);
-  const bool range_noise = HasPointNoise(options.sensor, options.range_noise);
+  const bool range_noise = HasPointNoise(options.sensor, options.noise.range_noise);
   const float* q = resp->range_variance.data();
   resp->num_points = n;
   resp->num_planes = k;
@@ -203,8 +203,8 @@ RELPLANE_SIMD_CLONES void MStep(const Cloud& points, const Responsibilities& res
     double sums[11] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
     const int whole = n / kBlock * kBlock;
     for (int start = 0; start < whole; start += kBlock) {
-      AddBlockMoments(r + start, q + start, x + start, y + start, z + start, kBlock,
-                      plane.centroid, var_j, sums);
+      AddBlockMoments(r + start, q + start, x + start, y + start, z + start, kBlock, plane.centroid,
+                      var_j, sums);
     }
     if (whole < n) {
       const int m = n - whole;
@@ -237,8 +237,8 @@ RELPLANE_SIMD_CLONES void MStep(const Cloud& points, const Responsibilities& res
     plane.centroid = mean.cast<float>();
     // sum(w d^2) / sum(r) estimates sigma^2 once range noise is normalised out.
     const double variance = std::max(0.0, eig.eigenvalues()(0)) / support;
-    plane.sigma =
-        std::clamp(static_cast<float>(std::sqrt(variance)), options.sigma_min, options.sigma_max);
+    plane.sigma = std::clamp(static_cast<float>(std::sqrt(variance)), options.noise.sigma_min,
+                             options.noise.sigma_max);
   }
 }
 
@@ -262,8 +262,8 @@ int RunEm(const Cloud& points, const Options& options, int max_iterations,
       // The sine from the cross product: acos of a float dot product cannot resolve angles
       // below about 3e-4 rad, so EM would never see itself converge.
       const float sin_angle = before[j].normal.cross((*planes)[j].normal).norm();
-      active[j] = sin_angle > options.converged_angle ||
-                  std::fabs(before[j].d - (*planes)[j].d) > options.converged_offset;
+      active[j] = sin_angle > options.em.converged_angle ||
+                  std::fabs(before[j].d - (*planes)[j].d) > options.em.converged_offset;
       moved = moved || active[j];
     }
     // Converged: the last E-step's responsibilities belong to planes that have since moved by

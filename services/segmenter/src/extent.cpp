@@ -105,22 +105,8 @@ void TrimmedMoments(Piece* p) {
   if (p->trimmed_count < 3) return;
   const Piece trimmed = TrimmedFit(*p);
   p->scatter = trimmed.scatter;  // as if every point had entered the fit
-  p->rays = p->stride * RaysShare(trimmed.scatter / p->stride,
-                                  trimmed.out.centroid.cast<double>(), p->trimmed_count);
-  p->trimmed_centroid = trimmed.out.centroid;
-  p->trimmed_normal = trimmed.out.normal.cast<double>();
-  p->trimmed_rms = trimmed.out.rms;
-}
-
-// Refits the piece to its trimmed moments by least squares; the extent's axes (u, v) and
-// centroid frame stay, the vertices are lifted onto the new plane afterwards.
-void LeastSquaresRefit(Piece* p) {
-  if (p->trimmed_count < 3) return;
-  const Piece trimmed = TrimmedFit(*p);
-  p->out.normal = trimmed.out.normal;
-  p->out.d = trimmed.out.d;
-  p->out.rms = trimmed.out.rms;
-  p->scatter = trimmed.scatter;
+  p->rays = p->stride * RaysShare(trimmed.scatter / p->stride, trimmed.out.centroid.cast<double>(),
+                                  p->trimmed_count);
   p->trimmed_centroid = trimmed.out.centroid;
   p->trimmed_normal = trimmed.out.normal.cast<double>();
   p->trimmed_rms = trimmed.out.rms;
@@ -189,7 +175,6 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
   const float* x = cloud.x.data();
   const float* y = cloud.y.data();
   const float* z = cloud.z.data();
-  const bool keep_ends = options.wall_end_estimate;  // EstimateWallEnds reads them
   // Point i of `cell` in a cell with a mode; `fitted`: it entered the cell's moments.
   auto visit = [&](size_t i, int32_t cell, uint8_t mode, bool fitted) {
     Piece& p = (*pieces)[w->piece_of[cell]];
@@ -206,10 +191,8 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
       p.a_max = std::max(p.a_max, ab.x());
       p.b_min = std::min(p.b_min, ab.y());
       p.b_max = std::max(p.b_max, ab.y());
-      if (keep_ends) {
-        p.lo_end.Add(-ab.x(), ab.y());
-        p.hi_end.Add(ab.x(), ab.y());
-      }
+      p.lo_end.Add(-ab.x(), ab.y());  // EstimateWallEnds reads them
+      p.hi_end.Add(ab.x(), ab.y());
       return;
     }
     if (ab.x() < c.lo_a.x()) c.lo_a = ab;
@@ -288,8 +271,8 @@ void EstimateWallEnds(float ray_step, float share, float max_spacing, float rang
 
 // A piece whose RMS is over this many times the noise expected along its normal leans between
 // two surfaces (DominantLineFit) ... At 2 the mapper's seeded runs did a little worse (425 of
-// 432 against 428, before the refits' trim was capped; services/mapper/NOTES.md): pieces 2-3 times over their
-// noise are mostly small and barely turned by the fit.
+// 432 against 428, before the refits' trim was capped; services/mapper/NOTES.md): pieces 2-3 times
+// over their noise are mostly small and barely turned by the fit.
 constexpr double kLeaningRms = 3.0;
 // ... and takes the line most of its points lie on if that line holds at least this share of them.
 constexpr double kMinLineShare = 0.5;
@@ -315,7 +298,7 @@ double MeanSquaredIncidence(const Eigen::Vector3f* points, size_t num_points,
 // at `point`.
 double RangeVariance(const Options& options, const Eigen::Vector3d& point) {
   if (options.sensor.Known()) return options.sensor.VarianceAt(static_cast<float>(point.x()));
-  const double g = static_cast<double>(options.range_noise) * point.squaredNorm();
+  const double g = static_cast<double>(options.noise.range_noise) * point.squaredNorm();
   return g * g;
 }
 
@@ -375,8 +358,7 @@ void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorksp
     fit.count = p.trimmed_count;
     fits[k] = IterateTrimmedFit(points.data() + start[k], start[k + 1] - start[k],
                                 p.trimmed_centroid.cast<double>(), fit, kTrimSigmas,
-                                options.sigma_min, kMaxRefits);
-    if (!options.dominant_line_fit) continue;
+                                options.noise.sigma_min, kMaxRefits);
     along[k] = MeanSquaredIncidence(points.data() + start[k], start[k + 1] - start[k],
                                     p.trimmed_centroid, fits[k].normal);
     if (fits[k].count >= kMinNoisePoints && along[k] > 0.0) {
@@ -393,13 +375,13 @@ void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorksp
     Piece& p = (*pieces)[k];
     PlaneFit fit = fits[k];
     const double expected =
-        std::max(static_cast<double>(options.sigma_min),
+        std::max(static_cast<double>(options.noise.sigma_min),
                  std::sqrt(std::max(
                      0.0, along[k] * (sensor_variance + RangeVariance(options, fit.centroid)))));
-    if (options.dominant_line_fit && fit.rms > kLeaningRms * expected) {
+    if (fit.rms > kLeaningRms * expected) {
       const PlaneFit line = DominantLineFit(
           points.data() + start[k], start[k + 1] - start[k], p.trimmed_centroid.cast<double>(), fit,
-          kTrimSigmas * expected, kTrimSigmas, options.sigma_min, kMaxRefits, kMinLineShare);
+          kTrimSigmas * expected, kTrimSigmas, options.noise.sigma_min, kMaxRefits, kMinLineShare);
       if (line.fits > 0) {
         fit = line;
         p.line_refit = true;
@@ -412,9 +394,7 @@ void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorksp
     p.trimmed_rms = static_cast<float>(fit.rms);
     p.scatter = p.stride * fit.scatter;  // as if every point had entered the fit
     p.rays = p.stride * RaysShare(fit.scatter, fit.centroid, fit.count);
-    if (options.ray_noise_fit) continue;  // TrimmedRefit fits the new moments
-    SetPlaneFacingSensor(fit.normal, fit.centroid, &p.out);
-    p.out.rms = static_cast<float>(fit.rms);
+    // TrimmedRefit (Describe) fits the piece to these moments.
   }
 }
 
@@ -423,8 +403,8 @@ void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorksp
 void Describe(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
               std::vector<Piece>* pieces, std::vector<PieceStats>* out,
               std::vector<int32_t>* index) {
-  const bool ray_noise_fit = options.ray_noise_fit;
-  const double max_variance = static_cast<double>(options.sigma_max) * options.sigma_max;
+  const double max_variance =
+      static_cast<double>(options.noise.sigma_max) * options.noise.sigma_max;
   const size_t num_cells = w->cells.size();
   std::vector<std::vector<Eigen::Vector2f>> hull_points(pieces->size());
   for (size_t s = 0; s < num_cells; ++s) {
@@ -440,33 +420,26 @@ void Describe(const Cloud& cloud, const Options& options, PieceWorkspace::Buffer
     for (const auto& e : {c.lo_a, c.hi_a, c.lo_b, c.hi_b}) hull_points[piece].push_back(e);
   }
   for (Piece& p : *pieces) {
-    if (!p.kept) continue;
-    if (ray_noise_fit) {
-      TrimmedMoments(&p);
-    } else {
-      LeastSquaresRefit(&p);
-    }
+    if (p.kept) TrimmedMoments(&p);
   }
   IterateVerticalFits(cloud, options, w, pieces);
-  if (ray_noise_fit) {
-    // The sensor's noise along its rays, pooled over the frame's pieces (the large ones weigh
-    // most): a short piece's own residual also holds what is not noise (a corner's other face,
-    // a bend), and a piece seen at a grazing angle divides it by little.
-    double residual = 0.0, along = 0.0;
-    for (Piece& p : *pieces) {
-      if (!p.kept || p.trimmed_count < 3) continue;
-      residual += p.trimmed_normal.dot(p.scatter * p.trimmed_normal);
-      along += p.trimmed_normal.dot(p.rays * p.trimmed_normal);
-    }
-    const double ray_variance = along > 0.0 ? std::min(max_variance, residual / along) : 0.0;
-    for (Piece& p : *pieces) {
-      if (!p.kept) continue;
-      // A known camera's noise along the rays is its own at the piece's range (far pieces are
-      // noisier than the frame's pool, which the near ones dominate).
-      TrimmedRefit(options.sensor.Known() ? RangeVariance(options, p.trimmed_centroid.cast<double>())
-                                          : ray_variance,
-                   &p);
-    }
+  // The sensor's noise along its rays, pooled over the frame's pieces (the large ones weigh
+  // most): a short piece's own residual also holds what is not noise (a corner's other face,
+  // a bend), and a piece seen at a grazing angle divides it by little.
+  double residual = 0.0, along = 0.0;
+  for (Piece& p : *pieces) {
+    if (!p.kept || p.trimmed_count < 3) continue;
+    residual += p.trimmed_normal.dot(p.scatter * p.trimmed_normal);
+    along += p.trimmed_normal.dot(p.rays * p.trimmed_normal);
+  }
+  const double ray_variance = along > 0.0 ? std::min(max_variance, residual / along) : 0.0;
+  for (Piece& p : *pieces) {
+    if (!p.kept) continue;
+    // A known camera's noise along the rays is its own at the piece's range (far pieces are
+    // noisier than the frame's pool, which the near ones dominate).
+    TrimmedRefit(options.sensor.Known() ? RangeVariance(options, p.trimmed_centroid.cast<double>())
+                                        : ray_variance,
+                 &p);
   }
   index->assign(pieces->size(), -1);
   for (size_t i = 0; i < pieces->size(); ++i) {
@@ -490,6 +463,37 @@ void Describe(const Cloud& cloud, const Options& options, PieceWorkspace::Buffer
   }
 }
 
+// Per mixture plane, its largest piece fitted to a line (DominantLineFit): the plane to assign
+// the frame again with.
+std::vector<LineRefit> LineRefits(const std::vector<EmPlane>& planes,
+                                  const std::vector<Piece>& pieces, const Options& options) {
+  std::vector<LineRefit> refits;
+  std::vector<int> largest(planes.size(), -1);
+  for (const Piece& p : pieces) {
+    if (!p.kept || !p.line_refit || p.trimmed_count < 3) continue;
+    if (largest[p.plane] >= 0 && largest[p.plane] >= p.support) continue;
+    largest[p.plane] = p.support;
+    const EmPlane& was = planes[p.plane];
+    Eigen::Vector3f n = p.trimmed_normal.cast<float>();
+    if (n.dot(was.normal) < 0.0f) n = -n;
+    EmPlane refit = was;
+    refit.normal = n;
+    refit.d = -n.dot(p.trimmed_centroid);
+    // Never a wider band than EM gave it: the line is to take in less, not more.
+    refit.sigma = std::clamp(p.trimmed_rms, options.noise.sigma_min,
+                             std::max(options.noise.sigma_min, was.sigma));
+    refit.centroid = p.trimmed_centroid;
+    auto same = std::find_if(refits.begin(), refits.end(),
+                             [&](const LineRefit& r) { return r.plane == p.plane; });
+    if (same != refits.end()) {
+      same->refit = refit;
+    } else {
+      refits.push_back({p.plane, refit});
+    }
+  }
+  return refits;
+}
+
 }  // namespace
 
 PieceWorkspace::PieceWorkspace() : buffers_(std::make_unique<Buffers>()) {}
@@ -497,16 +501,17 @@ PieceWorkspace::~PieceWorkspace() = default;
 PieceWorkspace::PieceWorkspace(PieceWorkspace&&) noexcept = default;
 PieceWorkspace& PieceWorkspace::operator=(PieceWorkspace&&) noexcept = default;
 
-std::vector<DetectedPlane> DescribePieces(
-    const Cloud& cloud, const std::vector<int32_t>& labels, const std::vector<uint8_t>& ambiguous,
-    const std::vector<EmPlane>& planes, const Options& options, float angular_step, float ray_step,
-    float share, std::vector<int32_t>* piece_labels, PieceWorkspace* workspace,
-    std::vector<uint8_t>* plane_has_piece, std::vector<LineRefit>* line_refits) {
+Description DescribePieces(const DescribeRequest& request, const Options& options,
+                           PieceWorkspace* workspace) {
+  const Cloud& cloud = request.cloud;
+  const std::vector<EmPlane>& planes = request.planes;
+  Description result;
+  std::vector<int32_t>* piece_labels = request.want_piece_labels ? &result.piece_labels : nullptr;
   PieceWorkspace local;
   PieceWorkspace::Buffers& w = workspace ? workspace->Get() : local.Get();
   if (piece_labels) piece_labels->assign(cloud.size(), -1);
-  BinPoints(cloud, labels, ambiguous, planes, options, &w);
-  std::vector<Piece> pieces(LabelPieces(planes, options, angular_step, &w));
+  BinPoints(cloud, request.labels, request.ambiguous, planes, options, &w);
+  std::vector<Piece> pieces(LabelPieces(planes, options, request.sampling.angular_step, &w));
   const double stride = static_cast<double>(FitStride(cloud.size(), options));
   for (size_t s = 0; s < w.cells.size(); ++s) {
     if (w.piece_of[s] < 0) continue;
@@ -517,67 +522,36 @@ std::vector<DetectedPlane> DescribePieces(
     w.moments[s].all.AddTo(w.grids[p.plane].origin, &p.count, &p.sum, &p.sum_sq);
   }
   for (Piece& p : pieces) {
-    p.kept = p.support >= options.min_points && p.count >= 3;
+    p.kept = p.support >= options.extents.min_points && p.count >= 3;
     if (!p.kept) continue;
     Refit(w.grids[p.plane].origin, &p);
-    p.vertical = std::fabs(p.out.normal.z()) < options.vertical_max_nz;
+    p.vertical = std::fabs(p.out.normal.z()) < options.extents.vertical_max_nz;
     PlaneAxes(p.out.normal, p.vertical, &p.u, &p.v);
-    p.trim = kTrimSigmas * std::max(p.out.rms, options.sigma_min);
+    p.trim = kTrimSigmas * std::max(p.out.rms, options.noise.sigma_min);
     const PlaneGrid& g = w.grids[p.plane];
     const float half = 0.5f * g.cell;
     p.cell_spread = half * (std::fabs(p.out.normal.dot(g.u)) + std::fabs(p.out.normal.dot(g.v)));
     p.normal_spread = std::fabs(p.out.normal.dot(g.n));
   }
-  if (plane_has_piece) {
-    plane_has_piece->assign(planes.size(), 0);
-    for (const Piece& p : pieces) {
-      if (p.kept) (*plane_has_piece)[p.plane] = 1;
-    }
+  result.plane_has_piece.assign(planes.size(), 0);
+  for (const Piece& p : pieces) {
+    if (p.kept) result.plane_has_piece[p.plane] = 1;
   }
   MarkOuterCells(static_cast<int>(pieces.size()), &w);
   PlanSecondPass(&w, &pieces);
   TrimAndExtend(cloud, options, &w, &pieces, piece_labels);
-  if (options.wall_end_estimate) {
-    // The cloud's furthest point is about the sensor's range (a wall cut by it reaches it).
-    float furthest2 = 0.0f;
-    for (size_t i = 0; i < cloud.size(); ++i) {
-      furthest2 = std::max(furthest2, cloud.x[i] * cloud.x[i] + cloud.y[i] * cloud.y[i] +
-                                          cloud.z[i] * cloud.z[i]);
-    }
-    EstimateWallEnds(ray_step, std::clamp(share, 1e-3f, 1.0f), kMaxEndSpacing,
-                     kRangeCutShare * std::sqrt(furthest2), &pieces);
+  // The cloud's furthest point is about the sensor's range (a wall cut by it reaches it).
+  float furthest2 = 0.0f;
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    furthest2 = std::max(
+        furthest2, cloud.x[i] * cloud.x[i] + cloud.y[i] * cloud.y[i] + cloud.z[i] * cloud.z[i]);
   }
+  EstimateWallEnds(request.sampling.ray_step, std::clamp(request.sampling.share, 1e-3f, 1.0f),
+                   kMaxEndSpacing, kRangeCutShare * std::sqrt(furthest2), &pieces);
   std::vector<PieceStats> described;
   std::vector<int32_t> index;
   Describe(cloud, options, &w, &pieces, &described, &index);
-  if (line_refits) {
-    // Per mixture plane, its largest piece fitted to a line: the plane to assign again with.
-    line_refits->clear();
-    std::vector<int> largest(planes.size(), -1);
-    for (const Piece& p : pieces) {
-      if (!p.kept || !p.line_refit || p.trimmed_count < 3) continue;
-      if (largest[p.plane] >= 0 && largest[p.plane] >= p.support) continue;
-      largest[p.plane] = p.support;
-      const EmPlane& was = planes[p.plane];
-      Eigen::Vector3f n = p.trimmed_normal.cast<float>();
-      if (n.dot(was.normal) < 0.0f) n = -n;
-      EmPlane refit = was;
-      refit.normal = n;
-      refit.d = -n.dot(p.trimmed_centroid);
-      // Never a wider band than EM gave it: the line is to take in less, not more.
-      refit.sigma =
-          std::clamp(p.trimmed_rms, options.sigma_min, std::max(options.sigma_min, was.sigma));
-      refit.centroid = p.trimmed_centroid;
-      auto same = std::find_if(line_refits->begin(), line_refits->end(),
-                               [&](const LineRefit& r) { return r.plane == p.plane; });
-      if (same != line_refits->end()) {
-        same->refit = refit;
-      } else {
-        line_refits->push_back({p.plane, refit});
-      }
-    }
-  }
-
+  result.line_refits = LineRefits(planes, pieces, options);
   std::vector<int32_t> merged_into;
   std::vector<PieceStats> merged = MergeTouchingPieces(std::move(described), options, &merged_into);
   std::vector<int32_t> order(merged.size());
@@ -585,18 +559,17 @@ std::vector<DetectedPlane> DescribePieces(
   std::stable_sort(order.begin(), order.end(), [&merged](int32_t a, int32_t b) {
     return merged[a].plane.num_points > merged[b].plane.num_points;
   });
-  std::vector<DetectedPlane> sorted;
   std::vector<int32_t> rank(order.size());
   for (size_t r = 0; r < order.size(); ++r) {
     rank[order[r]] = static_cast<int32_t>(r);
-    sorted.push_back(std::move(merged[order[r]].plane));
+    result.planes.push_back(std::move(merged[order[r]].plane));
   }
   if (piece_labels) {
     for (int32_t& l : *piece_labels) {
       if (l >= 0) l = rank[merged_into[index[l]]];
     }
   }
-  return sorted;
+  return result;
 }
 
 }  // namespace relplane::segmenter

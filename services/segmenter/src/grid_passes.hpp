@@ -55,7 +55,7 @@ GridBounds PlaneBounds(size_t n, const int32_t* label, int32_t plane, const floa
 void GridSlots(size_t n, const int32_t* label, const float* a, const float* b,
                const PlaneTable& table, int32_t* slot);
 
-// What sets a cell's reach (see Options::cell_reach, reach_spacings, max_reach).
+// What sets a cell's reach (see ExtentOptions::cell_reach, reach_spacings, max_reach).
 struct ReachRule {
   int cell_reach = 2;           // cells, at least
   float reach_spacings = 0.0f;  // > 0

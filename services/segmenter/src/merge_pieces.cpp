@@ -60,16 +60,8 @@ void Absorb(const PieceStats& b, const Options& options, PieceStats* a) {
   const Eigen::Matrix3d scatter = a->scatter + b.scatter + na * (ca - c) * (ca - c).transpose() +
                                   nb * (cb - c) * (cb - c).transpose();
   const Eigen::Matrix3d rays = a->rays + b.rays;
-  RayNoiseFit fit;
-  if (options.ray_noise_fit) {
-    fit = FitOutRayNoise(scatter, rays, n,
-                         static_cast<double>(options.sigma_max) * options.sigma_max);
-  } else {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-    eig.computeDirect(scatter);
-    fit.normal = eig.eigenvectors().col(0).normalized();
-    fit.rms = std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / n);
-  }
+  const RayNoiseFit fit = FitOutRayNoise(
+      scatter, rays, n, static_cast<double>(options.noise.sigma_max) * options.noise.sigma_max);
   Eigen::Vector3d normal = fit.normal;
   double d = -normal.dot(c);
   if (d < 0) {
@@ -86,7 +78,7 @@ void Absorb(const PieceStats& b, const Options& options, PieceStats* a) {
   p.rms = static_cast<float>(fit.rms);
   a->scatter = scatter;
   a->rays = rays;
-  a->vertical = std::fabs(p.normal.z()) < options.vertical_max_nz;
+  a->vertical = std::fabs(p.normal.z()) < options.extents.vertical_max_nz;
   Eigen::Vector3f u, v;
   if (a->vertical) {
     u = Eigen::Vector3f::UnitZ().cross(p.normal).normalized();
@@ -145,22 +137,22 @@ bool Overlap(const DetectedPlane& p, const DetectedPlane& q) {
 bool Mergeable(const PieceStats& a, const PieceStats& b, const Options& options) {
   const DetectedPlane& p = a.plane;
   const DetectedPlane& q = b.plane;
-  const float within = options.sensor.CoplanarDistance(options.merge_distance, p.normal,
+  const float within = options.sensor.CoplanarDistance(options.merge.distance, p.normal,
                                                         p.centroid, q.normal, q.centroid);
   if (std::fabs(p.normal.dot(q.centroid) + p.d) > within) return false;
   if (std::fabs(q.normal.dot(p.centroid) + q.d) > within) return false;
   const float cosine = p.normal.dot(q.normal);
   const float cos_overlap =
-      std::cos(options.overlap_merge_angle_deg * static_cast<float>(M_PI) / 180.0f);
+      std::cos(options.merge.overlap_angle_deg * static_cast<float>(M_PI) / 180.0f);
   if (a.vertical && b.vertical && cosine >= cos_overlap && Overlap(p, q)) return true;
   const float cos_merge =
-      std::cos(options.piece_merge_angle_deg * static_cast<float>(M_PI) / 180.0f);
+      std::cos(options.merge.piece_angle_deg * static_cast<float>(M_PI) / 180.0f);
   if (cosine < cos_merge) return false;
   Eigen::Vector3f u, v;
   Axes(p.normal, &u, &v);
   const float gap = ConvexPolygonDistance(ConvexHull(Project(p.vertices, p.centroid, u, v)),
                                           ConvexHull(Project(q.vertices, p.centroid, u, v)));
-  return gap <= options.cell_reach * options.cell_size;
+  return gap <= options.extents.cell_reach * options.extents.cell_size;
 }
 
 }  // namespace

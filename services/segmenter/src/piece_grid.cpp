@@ -87,7 +87,7 @@ void PlaneAxes(const Eigen::Vector3f& n, bool vertical, Eigen::Vector3f* u, Eige
 }
 
 size_t FitStride(size_t n, const Options& options) {
-  const size_t most = static_cast<size_t>(std::max(1, options.fit_points_max));
+  const size_t most = static_cast<size_t>(std::max(1, options.description.fit_points_max));
   return std::max<size_t>(1, (n + most - 1) / most);
 }
 
@@ -103,8 +103,8 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
     PlaneGrid& g = w->grids[j];
     g.origin = planes[j].centroid;
     g.n = planes[j].normal;
-    PlaneAxes(planes[j].normal, std::fabs(planes[j].normal.z()) < options.vertical_max_nz, &g.u,
-              &g.v);
+    PlaneAxes(planes[j].normal, std::fabs(planes[j].normal.z()) < options.extents.vertical_max_nz,
+              &g.u, &g.v);
   }
   // Each point's coordinates in its plane's grid, then each plane's bounds and point count.
   const size_t k = planes.size();
@@ -135,13 +135,13 @@ void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,
   }
   size_t slots = 0;
   for (PlaneGrid& g : w->grids) {
-    g.used = g.points >= options.min_points;
+    g.used = g.points >= options.extents.min_points;
     if (!g.used) continue;
-    g.cell = options.cell_size;
+    g.cell = options.extents.cell_size;
     for (;;) {  // coarsen until the grid fits: a bounded cost whatever the plane's extent
       const int64_t gw = static_cast<int64_t>((g.a_hi - g.a_lo) / g.cell) + 1;
       const int64_t gh = static_cast<int64_t>((g.b_hi - g.b_lo) / g.cell) + 1;
-      if (gw * gh <= options.max_cells) {
+      if (gw * gh <= options.extents.max_cells) {
         g.w = static_cast<int>(gw);
         g.h = static_cast<int>(gh);
         break;
@@ -287,8 +287,8 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
   // range of the cell's centre on its plane, at most max_reach.
   std::vector<int32_t>& reach = w->reach;
   reach.resize(num_cells);
-  const int base = std::max(1, options.cell_reach);
-  if (angular_step <= 0.0f || options.reach_spacings <= 0.0f) {
+  const int base = std::max(1, options.extents.cell_reach);
+  if (angular_step <= 0.0f || options.extents.reach_spacings <= 0.0f) {
     std::fill(reach.begin(), reach.end(), base);
   } else {
     PlaneTable& table = w->table;
@@ -296,9 +296,10 @@ int LabelPieces(const std::vector<EmPlane>& planes, const Options& options, floa
       table.cell[j + 1] = w->grids[j].cell;
       table.distance[j + 1] = planes[j].d;
     }
-    CellReach(cells, table,
-              ReachRule{base, options.reach_spacings, options.max_reach, angular_step},
-              reach.data());
+    CellReach(
+        cells, table,
+        ReachRule{base, options.extents.reach_spacings, options.extents.max_reach, angular_step},
+        reach.data());
   }
   for (int32_t c = 0; c < num_cells; ++c) {
     if (w->counts[c].solid == 0) reach[c] = 0;

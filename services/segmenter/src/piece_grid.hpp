@@ -54,25 +54,25 @@ struct PlaneGrid {
 };
 
 struct PieceWorkspace::Buffers {
-  std::vector<float> a, b;                  // per point: coordinates in its plane's grid
-  std::vector<float> e;                     // per point: its distance to its EM plane
-  std::vector<int32_t> cell_of_point;       // per point: its cell, -1 for none
-  std::vector<int32_t> slot_of;             // per grid slot (all grids): its cell, -1 if empty
-  std::vector<Cell> cells;                  // in order of first appearance
-  std::vector<CellCount> counts;            // per cell
-  std::vector<int32_t> lane_count;          // per cell and lane: its points, while binning
-  std::vector<CellMoments> moments;         // per cell
-  std::vector<int32_t> fit_start;           // per cell and one more: where its points start in
-  std::vector<int32_t> fit_order;           // the indices of the points that enter the fits
-  std::vector<CellFinish> finish;           // per cell
-  std::vector<uint8_t> mode;                // per cell: what the second pass does with its points
-  std::vector<PlaneGrid> grids;             // per EM plane
-  PlaneTable table;                         // the grids, for the per-point passes
-  std::vector<int32_t> piece_of;            // per cell: its piece, -1 for none
-  std::vector<int32_t> parent, root_piece;  // union-find over cells
-  std::vector<int32_t> reach;               // per cell, in cells; 0 for cells in no piece
-  std::vector<uint8_t> outer;               // per cell: first or last of its piece on a line
-  std::vector<int32_t> piece_point_start;   // per piece and one more: where its points start in
+  std::vector<float> a, b;                    // per point: coordinates in its plane's grid
+  std::vector<float> e;                       // per point: its distance to its EM plane
+  std::vector<int32_t> cell_of_point;         // per point: its cell, -1 for none
+  std::vector<int32_t> slot_of;               // per grid slot (all grids): its cell, -1 if empty
+  std::vector<Cell> cells;                    // in order of first appearance
+  std::vector<CellCount> counts;              // per cell
+  std::vector<int32_t> lane_count;            // per cell and lane: its points, while binning
+  std::vector<CellMoments> moments;           // per cell
+  std::vector<int32_t> fit_start;             // per cell and one more: where its points start in
+  std::vector<int32_t> fit_order;             // the indices of the points that enter the fits
+  std::vector<CellFinish> finish;             // per cell
+  std::vector<uint8_t> mode;                  // per cell: what the second pass does with its points
+  std::vector<PlaneGrid> grids;               // per EM plane
+  PlaneTable table;                           // the grids, for the per-point passes
+  std::vector<int32_t> piece_of;              // per cell: its piece, -1 for none
+  std::vector<int32_t> parent, root_piece;    // union-find over cells
+  std::vector<int32_t> reach;                 // per cell, in cells; 0 for cells in no piece
+  std::vector<uint8_t> outer;                 // per cell: first or last of its piece on a line
+  std::vector<int32_t> piece_point_start;     // per piece and one more: where its points start in
   std::vector<Eigen::Vector3f> piece_points;  // a vertical piece's fitted points, about its fit
 };
 
@@ -81,11 +81,11 @@ struct PieceWorkspace::Buffers {
 void PlaneAxes(const Eigen::Vector3f& n, bool vertical, Eigen::Vector3f* u, Eigen::Vector3f* v);
 
 // Points of a cloud of n points that enter the fits: one in FitStride (see
-// Options::fit_points_max).
+// DescriptionOptions::fit_points_max).
 size_t FitStride(size_t n, const Options& options);
 
-// Bins the points of every plane with at least options.min_points labelled points into that
-// plane's grid (coarsened until it has at most options.max_cells cells): fills grids, cells
+// Bins the points of every plane with at least options.extents.min_points labelled points into that
+// plane's grid (coarsened until it has at most options.extents.max_cells cells): fills grids, cells
 // (count, whether it holds a solid point, moments of the points that enter the fits) and
 // cell_of_point.
 void BinPoints(const Cloud& cloud, const std::vector<int32_t>& labels,

@@ -69,7 +69,7 @@ size_t CountInliers(const Cloud& pts, const std::vector<int>& idx, const EmPlane
 // One proposal: the best flat neighbourhood's plane, refitted to its inliers.
 bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Options& options,
                 int min_support, std::mt19937* rng, EmPlane* out, std::vector<int>* support) {
-  const float radius2 = options.proposal_radius * options.proposal_radius;
+  const float radius2 = options.proposals.radius * options.proposals.radius;
   const size_t stride = std::max<size_t>(1, candidates.size() / kMaxScoringPoints);
   Fit best;
   size_t best_score = 0;
@@ -84,8 +84,8 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
     cy[k] = pts.y[candidates[k]];
     cz[k] = pts.z[candidates[k]];
   }
-  for (int trial = 0; trial < options.proposal_trials; ++trial) {
-    // The seed's nearest candidates (within proposal_radius): a neighbourhood that adapts to
+  for (int trial = 0; trial < options.proposals.trials; ++trial) {
+    // The seed's nearest candidates (within proposals.radius): a neighbourhood that adapts to
     // the sampling density, so small faces close to the sensor still fit in one.
     const size_t seed = (*rng)() % m;
     const float sx = cx[seed], sy = cy[seed], sz = cz[seed];
@@ -101,7 +101,7 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
       within += d2[k] < radius2;
     }
     if (static_cast<int>(within) < kMinNeighbours) continue;
-    const size_t keep = std::min(within, static_cast<size_t>(options.proposal_neighbours));
+    const size_t keep = std::min(within, static_cast<size_t>(options.proposals.neighbours));
     std::nth_element(near.begin(), near.begin() + (keep - 1), near.begin() + within);
     neighbours.resize(keep);
     for (size_t m = 0; m < keep; ++m) neighbours[m] = near[m].second;
@@ -110,10 +110,10 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
     // at the seed's depth: at range its noise alone exceeds proposal_max_rms.
     const float max_rms =
         options.sensor.Known()
-            ? std::max(options.proposal_max_rms, 2.0f * std::sqrt(options.sensor.VarianceAt(sx)))
-            : options.proposal_max_rms;
+            ? std::max(options.proposals.max_rms, 2.0f * std::sqrt(options.sensor.VarianceAt(sx)))
+            : options.proposals.max_rms;
     if (!fit.ok || fit.rms > max_rms) continue;
-    const float sigma = std::clamp(fit.rms, options.sigma_min, options.sigma_max);
+    const float sigma = std::clamp(fit.rms, options.noise.sigma_min, options.noise.sigma_max);
     const size_t score = CountInliers(pts, candidates, fit.plane, kInlierSigmas * sigma, stride);
     if (score > best_score) {
       best_score = score;
@@ -132,8 +132,8 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
     plane.normal = refit.plane.normal;
     plane.d = refit.plane.d;
     plane.centroid = refit.plane.centroid;
-    plane.sigma = std::clamp(std::max(refit.rms, options.sigma_initial * 0.5f), options.sigma_min,
-                             options.sigma_max);
+    plane.sigma = std::clamp(std::max(refit.rms, options.noise.sigma_initial * 0.5f),
+                             options.noise.sigma_min, options.noise.sigma_max);
   }
   inliers = Inliers(pts, candidates, plane, kInlierSigmas * plane.sigma);
   if (static_cast<int>(inliers.size()) < min_support) return false;
@@ -148,7 +148,7 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
 std::vector<EmPlane> ProposePlanes(const Cloud& points, std::vector<int> candidates,
                                    const Options& options, int min_support, std::mt19937* rng) {
   std::vector<EmPlane> proposals;
-  while (static_cast<int>(proposals.size()) < options.max_proposals_per_round &&
+  while (static_cast<int>(proposals.size()) < options.proposals.max_per_round &&
          static_cast<int>(candidates.size()) >= min_support) {
     EmPlane plane;
     std::vector<int> support;

@@ -68,9 +68,9 @@ constexpr float kKeptSupport = 0.5f;
 // with enough support to stay.
 bool Follows(const Options& options, const EmPlane& predicted, const EmPlane& fit,
              float min_support) {
-  const float cos_merge = std::cos(options.merge_angle_deg * static_cast<float>(M_PI) / 180.0f);
+  const float cos_merge = std::cos(options.merge.angle_deg * static_cast<float>(M_PI) / 180.0f);
   return fit.support >= min_support && predicted.normal.dot(fit.normal) > cos_merge &&
-         std::fabs(predicted.normal.dot(fit.centroid) + predicted.d) < options.merge_distance;
+         std::fabs(predicted.normal.dot(fit.centroid) + predicted.d) < options.merge.distance;
 }
 
 // A seed whose fit EM lost (support below pruning) lies, after a move, further from its points
@@ -115,7 +115,7 @@ int CarryLostSeeds(const Cloud& sample, const Options& options, const std::vecto
                    float min_support, std::vector<EmPlane>* planes, Responsibilities* resp) {
   const auto moved = ReanchorLostSeeds(seeds, min_support, planes);
   if (moved.empty()) return 0;
-  RunEm(sample, options, options.em_iterations, planes, resp);
+  RunEm(sample, options, options.em.iterations, planes, resp);
   int kept = 0;
   for (const auto& [j, predicted] : moved) {
     const float least = std::max(kKeptSupport * predicted.support, min_support);

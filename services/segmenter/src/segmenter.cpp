@@ -85,7 +85,7 @@ bool MergeAndPrune(const Options& options, float min_support, std::vector<EmPlan
   std::vector<EmPlane>& p = *planes;
   std::stable_sort(p.begin(), p.end(),
                    [](const EmPlane& a, const EmPlane& b) { return a.support > b.support; });
-  const float cos_merge = std::cos(options.merge_angle_deg * static_cast<float>(M_PI) / 180.0f);
+  const float cos_merge = std::cos(options.merge.angle_deg * static_cast<float>(M_PI) / 180.0f);
   std::vector<bool> gone(p.size(), false);
   for (size_t i = 0; i < p.size(); ++i) {
     if (p[i].support < min_support) gone[i] = true;
@@ -94,7 +94,7 @@ bool MergeAndPrune(const Options& options, float min_support, std::vector<EmPlan
       if (gone[j]) continue;
       const bool parallel = std::fabs(p[i].normal.dot(p[j].normal)) > cos_merge;
       const float within = options.sensor.CoplanarDistance(
-          options.merge_distance, p[i].normal, p[i].centroid, p[j].normal, p[j].centroid);
+          options.merge.distance, p[i].normal, p[i].centroid, p[j].normal, p[j].centroid);
       const bool coplanar = std::fabs(p[i].normal.dot(p[j].centroid) + p[i].d) < within &&
                             std::fabs(p[j].normal.dot(p[i].centroid) + p[j].d) < within;
       if (parallel && coplanar) gone[j] = true;
@@ -157,36 +157,37 @@ Result Segmenter::Segment(const Cloud& input) {
 
   // EM on a subsample; support thresholds scale with the sampling ratio.
   const int em_points =
-      std::clamp(static_cast<int>(cloud.size() / std::max(1, options_.em_fraction)),
-                 options_.em_points_min, std::max(options_.em_points_min, options_.em_points_max));
+      std::clamp(static_cast<int>(cloud.size() / std::max(1, options_.em.fraction)),
+                 options_.em.points_min, std::max(options_.em.points_min, options_.em.points_max));
   Subsample(cloud, em_points, options_.seed, &sample_);
   const Cloud& sample = sample_;
   const float ratio = static_cast<float>(sample.size()) / static_cast<float>(cloud.size());
-  const int min_support = std::max(options_.min_em_points,
-                                   static_cast<int>(std::ceil(options_.min_points * ratio * 0.5f)));
+  const int min_support =
+      std::max(options_.em.min_support,
+               static_cast<int>(std::ceil(options_.extents.min_points * ratio * 0.5f)));
   std::mt19937 rng(options_.seed);
   std::vector<EmPlane> planes = previous_;
   Responsibilities& resp = resp_;
-  for (int round = 0; round < options_.max_rounds; ++round) {
+  for (int round = 0; round < options_.em.max_rounds; ++round) {
     result.rounds = round + 1;
-    RunEm(sample, options_, options_.em_iterations, &planes, &resp);
+    RunEm(sample, options_, options_.em.iterations, &planes, &resp);
     if (round == 0) {
       result.reanchored = CarryLostSeeds(sample, options_, previous_,
                                          static_cast<float>(min_support), &planes, &resp);
     }
     // Pruning and merging change the mixture: let EM settle the survivors before proposing.
     if (MergeAndPrune(options_, static_cast<float>(min_support), &planes)) {
-      RunEm(sample, options_, options_.em_iterations, &planes, &resp);
+      RunEm(sample, options_, options_.em.iterations, &planes, &resp);
     }
-    const int room = options_.max_planes - static_cast<int>(planes.size());
+    const int room = options_.em.max_planes - static_cast<int>(planes.size());
     if (room <= 0) break;
     Options propose = options_;
-    propose.max_proposals_per_round = std::min(room, options_.max_proposals_per_round);
+    propose.proposals.max_per_round = std::min(room, options_.proposals.max_per_round);
     const auto proposals = ProposePlanes(sample, Unexplained(resp), propose, min_support, &rng);
     if (proposals.empty()) break;
     planes.insert(planes.end(), proposals.begin(), proposals.end());
-    if (round + 1 == options_.max_rounds) {  // out of rounds: still fit the last proposals
-      RunEm(sample, options_, options_.em_iterations, &planes, &resp);
+    if (round + 1 == options_.em.max_rounds) {  // out of rounds: still fit the last proposals
+      RunEm(sample, options_, options_.em.iterations, &planes, &resp);
     }
   }
   MergeAndPrune(options_, static_cast<float>(min_support), &planes);
@@ -194,45 +195,45 @@ Result Segmenter::Segment(const Cloud& input) {
   result.em_planes = static_cast<int>(planes.size());
 
   // One hard assignment pass, then connected pieces and their extents, over every point or, for
-  // a large cloud, over a stratified subsample of describe_points_max points (support counts
+  // a large cloud, over a stratified subsample of description.points_max points (support counts
   // scaled back). The sensor's angular step, learnt from the EM sample, sets how far apart the
   // described points land on each plane: far, grazing parts of a wall stay connected.
-  const bool subsample = !options_.keep_labels && options_.describe_points_max > 0 &&
-                         cloud.size() > static_cast<size_t>(options_.describe_points_max);
-  if (subsample) Subsample(cloud, options_.describe_points_max, options_.seed + 1, &described_);
+  const bool subsample = !options_.keep_labels && options_.description.points_max > 0 &&
+                         cloud.size() > static_cast<size_t>(options_.description.points_max);
+  if (subsample) Subsample(cloud, options_.description.points_max, options_.seed + 1, &described_);
   const Cloud& described = subsample ? described_ : cloud;
   const double scale = static_cast<double>(cloud.size()) / static_cast<double>(described.size());
   Options describe = options_;
-  describe.min_points =
-      std::max(1, static_cast<int>(std::ceil(options_.min_points / scale - 1e-9)));
+  describe.extents.min_points =
+      std::max(1, static_cast<int>(std::ceil(options_.extents.min_points / scale - 1e-9)));
   result.angular_step = EstimateAngularStep(sample, described.size());
   // The subsample keeps every ray's direction, only fewer of them: the sensor's own step.
   const float ray_step = result.angular_step / static_cast<float>(std::sqrt(scale));
   const float share = options_.keep_labels ? 1.0f : static_cast<float>(1.0 / scale);
   const Cloud& assigned_cloud = options_.keep_labels ? cloud : described;
   const Options& describe_options = options_.keep_labels ? options_ : describe;
-  std::vector<int32_t> pieces;
-  std::vector<uint8_t> has_piece;
-  std::vector<LineRefit> line_refits;
+  Description description;
   auto describe_all = [&] {
     AssignPoints(assigned_cloud, planes, options_, &labels_, &ambiguous_);
-    result.planes = DescribePieces(assigned_cloud, labels_, ambiguous_, planes, describe_options,
-                                   result.angular_step, ray_step, share,
-                                   options_.keep_labels ? &pieces : nullptr, &workspace_,
-                                   &has_piece, &line_refits);
+    const DescribeRequest request{assigned_cloud,
+                                  labels_,
+                                  ambiguous_,
+                                  planes,
+                                  Sampling{result.angular_step, ray_step, share},
+                                  options_.keep_labels};
+    description = DescribePieces(request, describe_options, &workspace_);
+    result.planes = std::move(description.planes);
   };
   describe_all();
-  // A mixture plane with no piece of its own is no surface: on a level sensor's noise-free
+  // A mixture plane with no piece of its own is no surface (on a level sensor's noise-free
   // frames a row of floor samples, one of ceiling samples and a wall's column at the same depth
-  // lie exactly in one plane square to the view. Such a plane still claims the wall's points
-  // on that column as where two planes cross (ambiguous, see AssignPoints), which cannot
-  // connect a piece: 0.4 m of a hallway wall beside a door frame fell out of its piece, and its
-  // end with it; 64 % of the noise-free doors loop's frames had such planes, 15 % at 1 cm noise.
-  // With options.drop_pieceless_planes the frame is assigned and described again without them.
-  // They stay in the mixture the next frame starts from: a wall coming into view has no piece
-  // yet, and dropping them there too did worse on the seed sweeps (services/mapper/NOTES.md).
-  if (options_.drop_pieceless_planes &&
-      std::find(has_piece.begin(), has_piece.end(), 0) != has_piece.end()) {
+  // lie exactly in one plane square to the view), yet it claims the points where it crosses a
+  // wall as ambiguous (AssignPoints), and those cannot connect a piece: the wall's piece is cut
+  // short. The frame is assigned and described again without such planes. They stay in the
+  // mixture the next frame starts from: a wall coming into view has no piece yet
+  // (docs/decisions/segmenter.md).
+  const std::vector<uint8_t>& has_piece = description.plane_has_piece;
+  if (std::find(has_piece.begin(), has_piece.end(), 0) != has_piece.end()) {
     std::vector<EmPlane> surfaces;
     for (size_t j = 0; j < planes.size(); ++j) {
       if (has_piece[j]) surfaces.push_back(planes[j]);
@@ -255,14 +256,14 @@ Result Segmenter::Segment(const Cloud& input) {
       describe_all();
     }
   }
-  // A mixture plane that leaned between two faces at a convex corner (a grazing pilaster front
-  // and the side it meets) held the side's samples up to 10 cm from the corner: its piece's line
-  // fit (DominantLineFit) leaves them out of the fit but not out of the piece, which reached
-  // past the corner, and the side's piece ended 10 cm short of it (loop_other_sensor at 1 cm,
-  // seed 47: the side's length, taken from such sightings, placed the front 10 cm off on the
-  // map). The frame is assigned and described again with those planes as their lines, once;
-  // the next frame's mixture starts from the lines too.
-  if (!line_refits.empty()) {
+  // A mixture plane that leans between two faces at a convex corner (a grazing pilaster front
+  // and the side it meets) holds the side's samples near the corner: its piece's line fit
+  // (DominantLineFit) leaves them out of the fit but not out of the piece, which reaches past
+  // the corner, and the side's piece ends short of it. The frame is assigned and described
+  // again with those planes set to their lines, once; the next frame's mixture starts from the
+  // lines too.
+  if (!description.line_refits.empty()) {
+    const std::vector<LineRefit> line_refits = std::move(description.line_refits);
     for (const LineRefit& r : line_refits) {
       const EmPlane& was = planes[static_cast<size_t>(r.plane)];
       for (EmPlane& carried : previous_) {
@@ -313,7 +314,7 @@ Result Segmenter::Segment(const Cloud& input) {
   result.labels.assign(input.size(), -1);
   for (size_t i = 0, k = 0; i < input.size(); ++i) {
     if (std::isfinite(input.x[i]) && std::isfinite(input.y[i]) && std::isfinite(input.z[i])) {
-      result.labels[i] = pieces[k++];
+      result.labels[i] = description.piece_labels[k++];
     }
   }
   return result;

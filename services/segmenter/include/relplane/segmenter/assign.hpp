@@ -11,7 +11,7 @@
 namespace relplane::segmenter {
 
 // Labels each point with the plane it is closest to in units of that plane's sigma, when within
-// options.inlier_sigmas; -1 otherwise (outlier). The hard counterpart of the E-step.
+// options.assignment.inlier_sigmas; -1 otherwise (outlier). The hard counterpart of the E-step.
 // `ambiguous` (optional) marks points within the inlier band of two or more crossing planes:
 // the strip along the line where two planes meet. The vectors' buffers are reused.
 void AssignPoints(const Cloud& cloud, const std::vector<EmPlane>& planes, const Options& options,

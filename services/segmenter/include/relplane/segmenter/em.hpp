@@ -53,7 +53,7 @@ void MStep(const Cloud& points, const Responsibilities& resp, const Options& opt
 // Alternates E and M steps until the planes stop moving or `max_iterations`; returns the
 // iterations run. A plane that has stopped moving is no longer refitted. `resp` holds the
 // responsibilities of the final planes (of the last E-step when EM converged: the planes have
-// moved by less than options.converged_angle / converged_offset since).
+// moved by less than options.em.converged_angle / converged_offset since).
 int RunEm(const Cloud& points, const Options& options, int max_iterations,
           std::vector<EmPlane>* planes, Responsibilities* resp);
 

@@ -34,13 +34,13 @@ struct RayNoiseFit {
 RayNoiseFit FitOutRayNoise(const Eigen::Matrix3d& scatter, const Eigen::Matrix3d& rays, double n,
                            double max_variance);
 
-// Merges pieces whose planes agree (normals within options.piece_merge_angle_deg, each centroid
-// within options.merge_distance of the other plane) and whose extents touch (within cell_reach
+// Merges pieces whose planes agree (normals within options.merge.piece_angle_deg, each centroid
+// within options.merge.distance of the other plane) and whose extents touch (within cell_reach
 // cells). EM keeps such surfaces apart when the data bend slightly (a depth camera's distortion
 // puts a strip of floor 1-2 cm off the rest); pieces split by a gap (a door) do not touch and stay
 // apart. Vertical pieces lying over each other (along the wall and up it, over half the smaller
-// one), each centroid within merge_distance of the other's plane, merge within the wider
-// options.overlap_merge_angle_deg: a depth sensor sees one surface there, which EM split between
+// one), each centroid within merge.distance of the other's plane, merge within the wider
+// options.merge.overlap_angle_deg: a depth sensor sees one surface there, which EM split between
 // two planes. `merged_into[k]` receives the index of the piece k ended up in.
 std::vector<PieceStats> MergeTouchingPieces(std::vector<PieceStats> pieces, const Options& options,
                                             std::vector<int32_t>* merged_into);

@@ -11,12 +11,12 @@
 
 namespace relplane::segmenter {
 
-// Proposes up to options.max_proposals_per_round planes on the points `candidates` (indices
-// into `points`). Each proposal comes from the best of options.proposal_trials local
-// neighbourhoods: a flat neighbourhood (RMS below proposal_max_rms) gives a plane, scored by
+// Proposes up to options.proposals.max_per_round planes on the points `candidates` (indices
+// into `points`). Each proposal comes from the best of options.proposals.trials local
+// neighbourhoods: a flat neighbourhood (RMS below proposals.max_rms) gives a plane, scored by
 // how many candidates lie within 2.5 sigma of it; the winner is refitted to those inliers and
 // kept when at least `min_support` candidates support it. A neighbourhood is the seed's
-// options.proposal_neighbours nearest candidates; "flat" also means its scatter is thin
+// options.proposals.neighbours nearest candidates; "flat" also means its scatter is thin
 // compared with its spread, which rejects patches across an edge. Deterministic for a given `rng`.
 std::vector<EmPlane> ProposePlanes(const Cloud& points, std::vector<int> candidates,
                                    const Options& options, int min_support, std::mt19937* rng);
