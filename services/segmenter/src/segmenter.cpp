@@ -290,7 +290,7 @@ Result Segmenter::Segment(const Cloud& input) {
       for (size_t j = 0; j < result.planes.size(); ++j) {
         if (!flat(result.planes[j])) renumber[j] = next++;
       }
-      for (int32_t& l : pieces) {
+      for (int32_t& l : description.piece_labels) {
         if (l >= 0) l = renumber[static_cast<size_t>(l)];
       }
     }
