@@ -20,8 +20,6 @@ MapperOptions ReadMapperOptions(Reader& r) {
   start.Read("yaw", &o.start_pose.yaw);
   r.Read("max_observations", &o.max_observations);
   if (o.max_observations < 16) r.Fail("max_observations", "must be at least 16");
-  r.Read("corner_radius", &o.corner_radius);
-  if (!(o.corner_radius >= 0.0)) r.Fail("corner_radius", "must be 0 (off) or positive");
 
   Reader reg = r.Child("registration");
   reg.Read("last_seen_window", &o.registration.last_seen_window);
@@ -29,6 +27,11 @@ MapperOptions ReadMapperOptions(Reader& r) {
   reg.Read("max_distance", &o.registration.max_distance);
   reg.Read("min_overlap", &o.registration.min_overlap);
   reg.Read("max_wall_normal_z", &o.registration.max_wall_normal_z);
+  reg.Read("end_jump", &o.registration.end_jump);
+  reg.Read("end_memory", &o.registration.end_memory);
+  reg.Read("same_surface", &o.registration.same_surface);
+  reg.Read("occlusion_bearing", &o.registration.occlusion_bearing);
+  reg.Read("occlusion_nearer", &o.registration.occlusion_nearer);
   if (o.registration.last_seen_window < 1) reg.Fail("last_seen_window", "must be at least 1");
   Positive(reg, "max_angle", o.registration.max_angle);
   Positive(reg, "max_distance", o.registration.max_distance);
@@ -49,6 +52,7 @@ MapperOptions ReadMapperOptions(Reader& r) {
   grp.Read("covisible_window", &o.grouping.covisible_window);
   grp.Read("recent_groups", &o.grouping.recent_groups);
   grp.Read("max_orientation_spread", &o.grouping.max_orientation_spread);
+  grp.Read("min_common_orientation", &o.grouping.min_common_orientation);
   if (o.grouping.min_observations < 1) grp.Fail("min_observations", "must be at least 1");
   if (o.grouping.recent_groups < 1) grp.Fail("recent_groups", "must be at least 1");
   if (!(o.grouping.max_orientation_spread > 0.0)) {
@@ -65,6 +69,7 @@ MapperOptions ReadMapperOptions(Reader& r) {
   cmp.Read("max_subinterval", &o.comparison.max_subinterval);
   cmp.Read("freeze_lag", &o.comparison.freeze_lag);
   cmp.Read("min_motion", &o.comparison.min_motion);
+  cmp.Read("uncut_share", &o.comparison.uncut_share);
   if (o.comparison.min_samples < 2) cmp.Fail("min_samples", "must be at least 2");
   Positive(cmp, "static_std", o.comparison.static_std);
 
@@ -74,6 +79,8 @@ MapperOptions ReadMapperOptions(Reader& r) {
   rg.Read("regroup_after", &o.regrouping.regroup_after);
   rg.Read("min_interval", &o.regrouping.min_interval);
   rg.Read("freeze_after", &o.regrouping.freeze_after);
+  rg.Read("sweep_period", &o.regrouping.sweep_period);
+  if (o.regrouping.sweep_period < 1) rg.Fail("sweep_period", "must be at least 1");
   if (o.regrouping.reorder_after < 1) rg.Fail("reorder_after", "must be at least 1");
   if (o.regrouping.regroup_after <= o.regrouping.reorder_after) {
     rg.Fail("regroup_after", "must be after reorder_after");
@@ -85,7 +92,69 @@ MapperOptions ReadMapperOptions(Reader& r) {
   Reader loc = r.Child("localisation");
   loc.Read("min_information", &o.localisation.min_information);
   loc.Read("prior_weight", &o.localisation.prior_weight);
+  loc.Read("outlier", &o.localisation.outlier);
+  loc.Read("suspect", &o.localisation.suspect);
+  loc.Read("misregistered", &o.localisation.misregistered);
+  loc.Read("drift_rate", &o.localisation.drift_rate);
+  loc.Read("tracked_prediction", &o.localisation.tracked_prediction);
+  loc.Read("end_gate", &o.localisation.end_gate);
+  loc.Read("along_heading", &o.localisation.along_heading);
+  loc.Read("max_step", &o.localisation.max_step);
+  loc.Read("max_held", &o.localisation.max_held);
   Positive(loc, "prior_weight", o.localisation.prior_weight);
+  Positive(loc, "drift_rate", o.localisation.drift_rate);
+  Positive(loc, "tracked_prediction", o.localisation.tracked_prediction);
+  Positive(loc, "max_step", o.localisation.max_step);
+
+  Reader mo = r.Child("motion");
+  mo.Read("turn_rate", &o.motion.turn_rate);
+  mo.Read("window", &o.motion.window);
+  mo.Read("min_span", &o.motion.min_span);
+  mo.Read("max_gap", &o.motion.max_gap);
+  mo.Read("max_stretches", &o.motion.max_stretches);
+  mo.Read("max_coast", &o.motion.max_coast);
+  mo.Read("pose_history", &o.motion.pose_history);
+  Positive(mo, "turn_rate", o.motion.turn_rate);
+  if (o.motion.min_span < 1) mo.Fail("min_span", "must be at least 1");
+  if (o.motion.max_stretches < 1) mo.Fail("max_stretches", "must be at least 1");
+  if (o.motion.pose_history < o.motion.max_gap + o.motion.window) {
+    mo.Fail("pose_history", "must cover max_gap + window");
+  }
+
+  Reader gr = r.Child("graph");
+  gr.Read("enabled", &o.graph.enabled);
+  gr.Read("angle_sigma", &o.graph.angle_sigma);
+  gr.Read("position_sigma", &o.graph.position_sigma);
+  gr.Read("prior_sigma", &o.graph.prior_sigma);
+  gr.Read("pose_tie_sigma", &o.graph.pose_tie_sigma);
+  gr.Read("pose_tie_angle_sigma", &o.graph.pose_tie_angle_sigma);
+  gr.Read("max_iterations", &o.graph.max_iterations);
+  gr.Read("robust", &o.graph.robust);
+  gr.Read("initial_damping", &o.graph.initial_damping);
+  gr.Read("tie_min_jump", &o.graph.tie_min_jump);
+  gr.Read("tie_min_turn", &o.graph.tie_min_turn);
+  gr.Read("max_pose_ties", &o.graph.max_pose_ties);
+  Positive(gr, "angle_sigma", o.graph.angle_sigma);
+  Positive(gr, "position_sigma", o.graph.position_sigma);
+  Positive(gr, "prior_sigma", o.graph.prior_sigma);
+  Positive(gr, "pose_tie_sigma", o.graph.pose_tie_sigma);
+  Positive(gr, "pose_tie_angle_sigma", o.graph.pose_tie_angle_sigma);
+  Positive(gr, "robust", o.graph.robust);
+  if (o.graph.max_iterations < 1) gr.Fail("max_iterations", "must be at least 1");
+  if (o.graph.max_pose_ties < 1) gr.Fail("max_pose_ties", "must be at least 1");
+
+  Reader pm = r.Child("published_map");
+  pm.Read("corner_radius", &o.published_map.corner_radius);
+  pm.Read("merge_angle", &o.published_map.merge_angle);
+  pm.Read("merge_distance", &o.published_map.merge_distance);
+  pm.Read("cut_overlap", &o.published_map.cut_overlap);
+  pm.Read("min_shortened_radii", &o.published_map.min_shortened_radii);
+  pm.Read("max_shortened_fraction", &o.published_map.max_shortened_fraction);
+  pm.Read("min_corner_angle", &o.published_map.min_corner_angle);
+  if (!(o.published_map.corner_radius >= 0.0)) {
+    pm.Fail("corner_radius", "must be 0 (off) or positive");
+  }
+  Positive(pm, "merge_distance", o.published_map.merge_distance);
   return o;
 }
 

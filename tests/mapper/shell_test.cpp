@@ -78,9 +78,16 @@ TEST(Convert, PoseAndMapMessages) {
 TEST(Options, ReadsTheSectionAndRefusesUnknownKeys) {
   const std::string file = ::testing::TempDir() + "mapper_options.yaml";
   std::ofstream(file) << "name: x\nmapper:\n  start_pose: {x: 1, y: 2, z: 1.0, yaw: 0.5}\n"
-                         "  grouping: {min_observations: 5}\n  corner_radius: 0.05\n";
+                         "  grouping: {min_observations: 5}\n  published_map: {corner_radius: 0.05}\n"
+                         "  graph: {angle_sigma: 0.004, max_pose_ties: 20}\n"
+                         "  motion: {turn_rate: 0.02}\n";
   const MapperOptions o = LoadMapperOptions(file);
-  EXPECT_DOUBLE_EQ(o.corner_radius, 0.05);
+  EXPECT_DOUBLE_EQ(o.published_map.corner_radius, 0.05);
+  // mapper.graph.* is settable (it was rejected as an unknown key once).
+  EXPECT_DOUBLE_EQ(o.graph.angle_sigma, 0.004);
+  EXPECT_EQ(o.graph.max_pose_ties, 20);
+  EXPECT_DOUBLE_EQ(o.graph.position_sigma, PoseGraphOptions{}.position_sigma);
+  EXPECT_DOUBLE_EQ(o.motion.turn_rate, 0.02);
   EXPECT_DOUBLE_EQ(o.start_pose.z, 1.0);
   EXPECT_DOUBLE_EQ(o.start_pose.yaw, 0.5);
   EXPECT_EQ(o.grouping.min_observations, 5);
@@ -88,7 +95,11 @@ TEST(Options, ReadsTheSectionAndRefusesUnknownKeys) {
   EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
   std::ofstream(file) << "mapper:\n  comparison: {static_std: -1}\n";
   EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
-  std::ofstream(file) << "mapper:\n  corner_radius: -0.1\n";
+  std::ofstream(file) << "mapper:\n  published_map: {corner_radius: -0.1}\n";
+  EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
+  std::ofstream(file) << "mapper:\n  graph: {angle_sigma: 0}\n";
+  EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
+  std::ofstream(file) << "mapper:\n  graph: {angel_sigma: 0.1}\n";
   EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
   std::remove(file.c_str());
 }

@@ -99,8 +99,6 @@ void AddSample(const Observation& oa, const ObservationTerms& ta, const Observat
   }
 }
 
-constexpr double kUncutShare = 0.8;  // of a sub-interval's samples, for an edge to be judged
-
 // Which edges of the observation at index k are cut by the view, by the majority of the three
 // around it: a single flicker of the flag under noise does not count.
 int CutKey(const std::deque<Observation>& obs, size_t k, size_t size) {
@@ -158,7 +156,7 @@ StaticVerdict Judge(const SubInterval& s, const ComparisonOptions& options) {
       // jamb's occlusion, a door opening a wall seen whole) is no wall end, however still it
       // stands, and is not where the wall's end is mapped. A parallel line's offset does not
       // depend on where along the wall the edge is.
-      if (!parallel && s.cut[2 * dir + i] > (1.0 - kUncutShare) * n) continue;
+      if (!parallel && s.cut[2 * dir + i] > (1.0 - options.uncut_share) * n) continue;
       if (Std1(s.line[dir][i], n) <= options.static_std && (motion >= options.min_motion ||
                                                              parallel)) {
         v.stats[dir].line_sum[i] += s.line[dir][i][0];
@@ -182,7 +180,7 @@ StaticVerdict Judge(const SubInterval& s, const ComparisonOptions& options) {
       // distance) do not. Such a pairing tells nothing, as with a still sensor above.
       const bool moved = m > 0.0 && std::max(Std2(s.pair_edges[i][j][0], m),
                                              Std2(s.pair_edges[i][j][1], m)) >= options.min_motion;
-      std_ij[i][j] = moved && m >= options.min_samples && m >= kUncutShare * n
+      std_ij[i][j] = moved && m >= options.min_samples && m >= options.uncut_share * n
                          ? Std2(s.pair[0][i][j], m)
                          : 1e9;
       if (std_ij[i][j] < std_ij[best_i][best_j]) best_i = i, best_j = j;

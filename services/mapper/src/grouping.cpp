@@ -35,7 +35,6 @@ bool FitsGroup(MapperState& state, const RltPlane& r, const Group& g, int64_t no
 // Judged against the plane seen with it most often over its latest sightings; a plane seen alone
 // cannot be judged and counts as steady.
 bool Steady(const MapperState& state, const RltPlane& r, const GroupingOptions& options) {
-  constexpr int kMinCommon = 4;
   const auto& all = r.Observations();
   const size_t n = std::min(all.size(), static_cast<size_t>(std::max(options.min_observations, 1)));
   const size_t from = all.size() - n;
@@ -55,7 +54,7 @@ bool Steady(const MapperState& state, const RltPlane& r, const GroupingOptions& 
       s += std::sin(d), c += std::cos(d);
     }
     const int common = static_cast<int>(deltas.size());
-    if (common < kMinCommon || common <= best_common) continue;
+    if (common < options.min_common_orientation || common <= best_common) continue;
     const double mean = std::atan2(s, c);
     double sq = 0.0;
     for (double d : deltas) {

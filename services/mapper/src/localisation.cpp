@@ -14,20 +14,6 @@ namespace {
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
 
-constexpr double kOutlier = 0.3;      // m: a wall this far from its line is left out
-// m: a wall fitting the pose worse than this is tried without (Localise); left out where the
-// rest, without it, fit within kSuspect and put it further off than kMisregistered: more than a
-// map's error, less than the depth of a pilaster or a recess beside a wall.
-constexpr double kSuspect = 0.05;
-constexpr double kMisregistered = 0.15;
-// m per iteration: how far a learnt velocity may carry the position off in an iteration (§II.E).
-constexpr double kDriftRate = 0.002;
-// m: how far off the prediction may be an iteration after a pose that wall ends fixed along
-// the walls (Localise).
-constexpr double kTrackedPrediction = 0.01;
-constexpr double kEdgeGate = 0.1;     // m: motion model snaps to a mapped end this close
-// cos 45 deg: an open direction this near the heading is one the sensor may move along.
-constexpr double kAlongHeading = 0.7071;
 // rad: orientation sigma every wall has whatever its fit says (the map's own error), so the
 // best-fitting walls do not take all the weight.
 constexpr double kOrientationFloor = 0.001;
@@ -306,7 +292,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       // gave the same on the runs traced), and the prediction drifts on from there.
       const Vector2d open = line_eig.eigenvectors().col(0);
       const double sigma =
-          std::max(kTrackedPrediction, kDriftRate * static_cast<double>(predicted_for));
+          std::max(options.tracked_prediction, options.drift_rate * static_cast<double>(predicted_for));
       sys.AddPrior(open, open.dot(previous.Translation()),
                    std::pow(LearnedFrustum::kEdgeNoise / sigma, 2));
     }
@@ -340,14 +326,14 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
           const double along = t.dot((placed ? mapped : x.end[e]) - rot * x.obs->edge[e]);
           const double moved = along - t.dot(previous.Translation());
           if (placed) {
-            if (std::abs(moved) >= kEdgeGate) continue;
+            if (std::abs(moved) >= options.end_gate) continue;
             // With the motion known the prediction is good to an end's noise and the velocity's
             // drift since the walls last fixed the position: an end further off is not the
             // wall's. The segmenter gave a wall's last 10 cm beside a door recess to a plane
             // across the corner for one iteration, one after a fixed pose, and the end left
             // moved the pose 7 cm back along the hallway for the 50 iterations of the motion
             // model after it (loop_other_sensor, σ = 1 cm, seed 13).
-            const double drift = kDriftRate * static_cast<double>(predicted_for);
+            const double drift = options.drift_rate * static_cast<double>(predicted_for);
             if (motion_known && std::abs(moved) >= LearnedFrustum::kEdgeNoise + drift) continue;
             // With the motion known, an end whose samples land further apart than its noise says
             // less than the learnt velocity: it stands for frames and jumps a column (one 4.8 m
@@ -370,7 +356,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
           // first group was placed 0.3 m behind (hallway_out_and_back, σ = 1 cm, seed 11).
           const double forwards = t.dot(rot.col(0)) >= 0.0 ? moved : -moved;
           const double noise = LearnedFrustum::kEdgeNoise;
-          const double reach = kMaxStep * (1 + std::clamp(held, 0, kMaxHeld));
+          const double reach = options.max_step * (1 + std::clamp(held, 0, options.max_held));
           if (forwards <= -noise || forwards >= reach + noise) continue;
           // Nor an end whose samples land further apart than its noise, as with the motion
           // known: the finest end in view may still be a coarse one. Turning on the spot at a
@@ -397,14 +383,15 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
       // first iterations of a motion-model spell, and the end wall first seen from there was mapped
       // as far back (loop_other_sensor, σ = 1 cm, seed 14).
       if (placed_ends > 0) {
-        const double sigma = std::max(kDriftRate * static_cast<double>(predicted_for), kDriftRate);
+        const double sigma =
+            std::max(options.drift_rate * static_cast<double>(predicted_for), options.drift_rate);
         const double w = std::pow(LearnedFrustum::kEdgeNoise / sigma, 2);
         sys.AddPrior(open, open.dot(previous.Translation()), w);
       }
       // The platform drives forwards (as the learnt velocity takes it): along an open direction
       // across the heading the position stays where it was, whatever an end seen at another
       // angle, off by its sampling, says (an office's door jamb moved it 1.3 cm a frame).
-      const bool along_heading = std::abs(open.dot(rot.col(0))) >= kAlongHeading;
+      const bool along_heading = std::abs(open.dot(rot.col(0))) >= options.along_heading;
       if (finest && along_heading) {
         sys.Add(finest_dir, finest_along);
         out.end_moved = true;
@@ -420,10 +407,10 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
     if (suspect >= 0) {
       // The trial without the worst-fitting wall: kept where the rest still fix the position,
       // agree among themselves, and put that wall off by more than a map's error.
-      bool agree = tracking && std::abs(Residual(sightings[suspect], out.pose)) > kMisregistered;
+      bool agree = tracking && std::abs(Residual(sightings[suspect], out.pose)) > options.misregistered;
       for (size_t k = 0; k < sightings.size() && agree; ++k) {
         if (use[k] && sightings[k].world.known != Known::kAngle) {
-          agree = std::abs(Residual(sightings[k], out.pose)) < kSuspect;
+          agree = std::abs(Residual(sightings[k], out.pose)) < options.suspect;
         }
       }
       if (!agree) out = with_suspect;
@@ -434,7 +421,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
     for (size_t k = 0; k < sightings.size() && round == 0; ++k) {
       const Sighting& x = sightings[k];
       if (!use[k] || x.world.known == Known::kAngle || sightings.size() < 3) continue;
-      if (std::abs(Residual(x, out.pose)) > kOutlier) {
+      if (std::abs(Residual(x, out.pose)) > options.outlier) {
         use[k] = false;
         dropped = true;
       }
@@ -447,7 +434,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
     // 10 cm across the hallway for 70 iterations (loop_other_sensor, σ = 1 cm, seed 20).
     if (!tracking) break;
     int lines = 0;
-    double worst = kSuspect;
+    double worst = options.suspect;
     for (size_t k = 0; k < sightings.size(); ++k) {
       if (!use[k] || sightings[k].world.known == Known::kAngle) continue;
       ++lines;

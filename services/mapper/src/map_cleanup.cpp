@@ -14,12 +14,7 @@ namespace {
 
 using Eigen::Vector2d;
 
-constexpr double kMergeAngle = 0.05;    // rad
-constexpr double kMergeDistance = 0.1;  // m
-constexpr double kGridCell = 2.0;       // m
-// m: two walls on one line sharing more than this where neither end in the shared stretch was
-// ever seen as a wall end (cut by the view or a nearer plane) are one wall seen in two stretches.
-constexpr double kCutOverlap = 0.2;
+constexpr double kGridCell = 2.0;  // m: the spatial index's cell (speed only, not the result)
 
 Vector2d End(const MappedPlane& m, int e) { return m.vertices[e].head<2>(); }
 
@@ -32,20 +27,20 @@ Vector2d DirectionOf(const MappedPlane& m) {
 // The segmenter's fit of a short piece is only known to a few centimetres over its length
 // (PieceBlur: a 0.2 m piece beside a door jamb takes some of the jamb's points, a median 2.4
 // degrees off, one in ten over 5 degrees, on the noisy office; pieces over 1.2 m: 0.05 degrees).
-bool OnLine(const MappedPlane& line, const MappedPlane& other) {
+bool OnLine(const MappedPlane& line, const MappedPlane& other, const PublishedMapOptions& options) {
   const double length = (End(other, 1) - End(other, 0)).norm();
-  const double tolerance = std::max(kMergeAngle, PieceBlurOfLength(length));
+  const double tolerance = std::max(options.merge_angle, PieceBlurOfLength(length));
   if (line.normal.dot(other.normal) < std::cos(tolerance)) return false;
   const Vector2d n = line.normal.head<2>();
   for (int e = 0; e < 2; ++e) {
-    if (std::abs(n.dot(End(other, e)) + line.d) >= kMergeDistance) return false;
+    if (std::abs(n.dot(End(other, e)) + line.d) >= options.merge_distance) return false;
   }
   return true;
 }
 
 // Does another wall reach `line`'s line between coordinates s0 < s1 along it?
 bool GapCrossed(const std::vector<MappedPlane>& planes, const std::vector<bool>& drop, size_t li,
-                size_t fi, double s0, double s1) {
+                size_t fi, double s0, double s1, const PublishedMapOptions& options) {
   const MappedPlane& line = planes[li];
   const Vector2d n = line.normal.head<2>(), t = DirectionOf(line);
   for (size_t k = 0; k < planes.size(); ++k) {
@@ -55,9 +50,9 @@ bool GapCrossed(const std::vector<MappedPlane>& planes, const std::vector<bool>&
     // The point of segment k nearest the line: where it crosses, else its nearer end.
     Vector2d x = std::abs(dp) < std::abs(dq) ? p : q;
     if (dp * dq < 0.0) x = p + (q - p) * (dp / (dp - dq));
-    if (std::abs(n.dot(x) + line.d) >= kMergeDistance) continue;
+    if (std::abs(n.dot(x) + line.d) >= options.merge_distance) continue;
     const double s = t.dot(x);
-    if (s > s0 - kMergeDistance && s < s1 + kMergeDistance) return true;
+    if (s > s0 - options.merge_distance && s < s1 + options.merge_distance) return true;
   }
   return false;
 }
@@ -80,7 +75,7 @@ void Extend(MappedPlane* wall, double s0, double s1, int64_t observations) {
 
 }  // namespace
 
-void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
+void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMapOptions& options) {
   std::vector<MappedPlane>& planes = *planes_in;
   std::vector<bool> drop(planes.size(), false);
   // A wall lying inside another on the same line is the same wall seen as a second rltplane
@@ -90,15 +85,15 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
   // and lay inside it: both stayed on the map). Where each lies inside the other, the
   // better-observed one is kept.
   const auto inside = [&](const MappedPlane& a, const MappedPlane& b) {
-    if (!OnLine(b, a)) return false;
+    if (!OnLine(b, a, options)) return false;
     const Vector2d t = DirectionOf(b);
-    const double s0 = std::min(t.dot(End(b, 0)), t.dot(End(b, 1))) - kMergeDistance;
-    const double s1 = std::max(t.dot(End(b, 0)), t.dot(End(b, 1))) + kMergeDistance;
+    const double s0 = std::min(t.dot(End(b, 0)), t.dot(End(b, 1))) - options.merge_distance;
+    const double s1 = std::max(t.dot(End(b, 0)), t.dot(End(b, 1))) + options.merge_distance;
     bool in = true;
     for (int e = 0; e < 2; ++e) in = in && t.dot(End(a, e)) >= s0 && t.dot(End(a, e)) <= s1;
     return in;
   };
-  // b holds a only if a's ends lie within kMergeDistance of b's line and of b's extent along
+  // b holds a only if a's ends lie within options.merge_distance of b's line and of b's extent along
   // it, so within b's box widened by twice that (a diagonal wall's box corners).
   const auto box_of = [](const MappedPlane& m, double margin) {
     Eigen::AlignedBox2d box(End(m, 0));
@@ -108,7 +103,7 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
   };
   BoxGrid grid(kGridCell);
   for (size_t j = 0; j < planes.size(); ++j) {
-    grid.Insert(j, box_of(planes[j], 2.0 * kMergeDistance));
+    grid.Insert(j, box_of(planes[j], 2.0 * options.merge_distance));
   }
   std::vector<std::vector<size_t>> near(planes.size());  // for the first round below
   for (size_t i = 0; i < planes.size(); ++i) {
@@ -139,7 +134,8 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
     for (size_t i : todo) {
       for (size_t j : first ? near[i] : grid.Query(box_of(planes[i], 0.0))) {
         if (drop[i]) break;
-        if (j == i || drop[j] || !OnLine(planes[i], planes[j]) || !OnLine(planes[j], planes[i])) {
+        if (j == i || drop[j] || !OnLine(planes[i], planes[j], options) ||
+            !OnLine(planes[j], planes[i], options)) {
           continue;
         }
         const bool i_better = planes[i].observations > planes[j].observations ||
@@ -155,8 +151,8 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
         // Where they overlap in part, the two ends inside the shared stretch: one of each wall's.
         const bool cut_ends = g0 < lo ? !keep.end_known[0] && !gone.end_known[1]
                                       : !keep.end_known[1] && !gone.end_known[0];
-        if (shared <= std::max(kMergeDistance, 0.5 * shorter) &&
-            !(cut_ends && shared > kCutOverlap)) {
+        if (shared <= std::max(options.merge_distance, 0.5 * shorter) &&
+            !(cut_ends && shared > options.cut_overlap)) {
           continue;
         }
         Extend(&keep, g0, g1, gone.observations);
@@ -164,7 +160,7 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
         if (g1 > hi) keep.end_known[1] = gone.end_known[1];
         keep.both_ends_known = keep.end_known[0] && keep.end_known[1];
         drop[i_better ? j : i] = true;
-        grid.Insert(k, box_of(keep, 2.0 * kMergeDistance));
+        grid.Insert(k, box_of(keep, 2.0 * options.merge_distance));
         stretched.push_back(k);
       }
     }
@@ -182,7 +178,7 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
       size_t best = planes.size();
       double best_gap = std::numeric_limits<double>::infinity();
       for (size_t j = 0; j < planes.size(); ++j) {
-        if (j == i || drop[j] || !OnLine(planes[j], piece)) continue;
+        if (j == i || drop[j] || !OnLine(planes[j], piece, options)) continue;
         const MappedPlane& wall = planes[j];
         const Vector2d t = DirectionOf(wall);
         const double lo = t.dot(End(wall, 0)), hi = t.dot(End(wall, 1));
@@ -196,7 +192,7 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
           if (wall.end_known[0]) continue;
           gap = lo - p1, g0 = p1, g1 = lo;
         }
-        if (gap >= best_gap || (gap > 0.0 && GapCrossed(planes, drop, j, i, g0, g1))) continue;
+        if (gap >= best_gap || (gap > 0.0 && GapCrossed(planes, drop, j, i, g0, g1, options))) continue;
         best = j, best_gap = gap;
       }
       if (best == planes.size()) continue;
@@ -214,10 +210,10 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in) {
   planes = std::move(kept);
 }
 
-void CleanUpWalls(std::vector<MappedPlane>* planes, double corner_radius) {
-  MergeDuplicateWalls(planes);
-  SnapEndsToCorners(planes, corner_radius);
-  MergeDuplicateWalls(planes);
+void CleanUpWalls(std::vector<MappedPlane>* planes, const PublishedMapOptions& options) {
+  MergeDuplicateWalls(planes, options);
+  SnapEndsToCorners(planes, options.corner_radius, options);
+  MergeDuplicateWalls(planes, options);
 }
 
 }  // namespace relplane::mapper

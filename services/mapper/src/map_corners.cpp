@@ -10,11 +10,10 @@ namespace {
 
 using Eigen::Vector2d;
 
-// Walls closer than this to parallel do not make a corner: where their lines cross moves far
-// with a small error in either orientation.
-const double kMinCornerSine = std::sin(30.0 * M_PI / 180.0);
-
-// Only walls at least this many radii long are shortened, unless the crossing wall ends where
+// Walls closer than PublishedMapOptions::min_corner_angle to parallel do not make a corner: where
+// their lines cross moves far with a small error in either orientation.
+//
+// Only walls at least min_shortened_radii radii long are shortened, unless the crossing wall ends where
 // they meet too (an L corner). A wall's last sample lies short of the corner, so a corner past
 // the end is what sampling leaves; a corner inside the wall means its points reach past the
 // other wall's line, which only noise explains, and on a short piece (a door jamb's 10-20 cm,
@@ -23,12 +22,10 @@ const double kMinCornerSine = std::sin(30.0 * M_PI / 180.0);
 // end estimate lands past a corner as often as short of it (a wall drawn from one sighting, 8 cm
 // of it left in view, 1.5 cm past a room's corner). A short piece lying beside a crossing wall
 // also has both its ends within reach of that wall's line: only the nearer end may move there.
-constexpr double kMinShortenedRadii = 2.0;
-// ... and by at most this fraction of their length, from each end: a line through a wall's
+// And by at most max_shortened_fraction of their length, from each end: a line through a wall's
 // middle is not its corner (a door jamb crossing a thin partition's line at the door).
-constexpr double kMaxShortenedFraction = 0.25;
 
-constexpr double kGridCell = 2.0;  // m
+constexpr double kGridCell = 2.0;  // m: the spatial index's cell (speed only, not the result)
 
 // The unit direction end[0] -> end[1] (along the line, either way, for a wall seen as a point).
 Vector2d DirectionOf(const WallSegment& w) {
@@ -41,10 +38,11 @@ Vector2d DirectionOf(const WallSegment& w) {
 // from that end; false when the walls are near parallel, the line is farther than `radius` or
 // `other` does not reach the point (to within `radius`: its own end is sampled short too).
 bool MeetingOffset(const WallSegment& wall, int e, const WallSegment& other, double radius,
+                   double min_sine,
                    double* along) {
   const Vector2d t = DirectionOf(wall);
   const double sine = other.normal.dot(t);
-  if (std::abs(sine) < kMinCornerSine) return false;
+  if (std::abs(sine) < min_sine) return false;
   const Vector2d& p = wall.end[e];
   *along = -(other.normal.dot(p) + other.d) / sine;
   if (std::abs(*along) > radius) return false;
@@ -61,7 +59,9 @@ bool EndsNear(const WallSegment& wall, const Vector2d& point, double radius) {
 
 }  // namespace
 
-int SnapSegmentEnds(std::vector<WallSegment>* walls, double radius) {
+int SnapSegmentEnds(std::vector<WallSegment>* walls, double radius,
+                    const PublishedMapOptions& options) {
+  const double min_sine = std::sin(options.min_corner_angle);
   if (!(radius > 0.0)) return 0;
   struct Move {
     size_t wall;
@@ -85,10 +85,10 @@ int SnapSegmentEnds(std::vector<WallSegment>* walls, double radius) {
       const Vector2d reach = Vector2d::Constant(radius);
       for (size_t j : grid.Query(Eigen::AlignedBox2d(wall.end[e] - reach, wall.end[e] + reach))) {
         double along = 0.0;
-        if (j == i || !MeetingOffset(wall, e, (*walls)[j], radius, &along)) continue;
+        if (j == i || !MeetingOffset(wall, e, (*walls)[j], radius, min_sine, &along)) continue;
         const bool shortens = e == 0 ? along > 0.0 : along < 0.0;
-        if (shortens && (std::abs(along) > kMaxShortenedFraction * length ||
-                         (length < kMinShortenedRadii * radius &&
+        if (shortens && (std::abs(along) > options.max_shortened_fraction * length ||
+                         (length < options.min_shortened_radii * radius &&
                           !EndsNear((*walls)[j], wall.end[e] + along * DirectionOf(wall),
                                     radius)))) {
           continue;
@@ -102,7 +102,8 @@ int SnapSegmentEnds(std::vector<WallSegment>* walls, double radius) {
   return static_cast<int>(moves.size());
 }
 
-int SnapEndsToCorners(std::vector<MappedPlane>* planes, double radius) {
+int SnapEndsToCorners(std::vector<MappedPlane>* planes, double radius,
+                      const PublishedMapOptions& options) {
   std::vector<WallSegment> walls;
   std::vector<size_t> index;  // planes[index[k]] is walls[k]
   for (size_t i = 0; i < planes->size(); ++i) {
@@ -117,7 +118,7 @@ int SnapEndsToCorners(std::vector<MappedPlane>* planes, double radius) {
     walls.push_back(w);
     index.push_back(i);
   }
-  const int moved = SnapSegmentEnds(&walls, radius);
+  const int moved = SnapSegmentEnds(&walls, radius, options);
   for (size_t k = 0; k < walls.size(); ++k) {
     MappedPlane& m = (*planes)[index[k]];
     // Mapper::Map's order: lo bottom, hi bottom, hi top, lo top.

@@ -20,24 +20,13 @@ namespace relplane::mapper {
 namespace {
 
 // Turning on the spot (the paths' corners): the heading is seen whatever the walls leave open,
-// and a sensor turning faster than this is taken not to move on. Faster by more than twice the
-// heading's own error (PoseEstimate::yaw_sigma): walking through a door with only a jamb in view,
-// its heading's 0.013-0.019 rad changes frame to frame passed for turns, and over eight
-// iterations the position stood still on several and fell 14 cm behind (office_other_sensor,
-// σ = 1 cm, seed 41).
-constexpr double kTurnRate = 0.01;  // rad per iteration (17 deg/s at 30 Hz)
-// Iterations after the last pose mapped walls placed through which a frame with no mapped wall
-// in view still gets the learnt motion's pose (§II.E with no plane): half a second at 30 Hz, as
-// long as the learnt velocity is trusted to carry the position off by no more than a wall end's
-// noise (2 mm an iteration, localisation.cpp, against 3 cm). A sixth of a second left a frame
-// without a pose walking through a door into an unmapped room, six frames with only the new
-// room's walls in view, the coasted pose 1 cm off (office_other_sensor, σ = 1 cm, seed 43).
-constexpr int64_t kMaxCoast = 15;
-
+// and a sensor turning faster than MotionOptions::turn_rate is taken not to move on; faster by
+// more than twice the heading's own error (PoseEstimate::yaw_sigma), so that a heading from a
+// door jamb alone, wobbling frame to frame, does not pass for a turn.
 bool Turning(const geometry::Pose2& from, const geometry::Pose2& to, int64_t iterations,
-             double yaw_sigma = 0.0) {
+             double turn_rate, double yaw_sigma = 0.0) {
   return std::abs(std::remainder(to.yaw - from.yaw, 2.0 * M_PI)) >
-         kTurnRate * static_cast<double>(iterations) + 2.0 * yaw_sigma;
+         turn_rate * static_cast<double>(iterations) + 2.0 * yaw_sigma;
 }
 
 }  // namespace
@@ -114,7 +103,7 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
     judged_range_limit_ = frustum_.RangeLimit();
     MarkViewCuts(frustum_, state_);
   }
-  MarkOccludedEdges(&observations);
+  MarkOccludedEdges(&observations, options_.registration);
   for (Observation& obs : observations) {
     for (int e = 0; e < 2; ++e) {
       obs.cut[e] = obs.cut[e] || frustum_.Clipped(obs.edge[e], obs.edge[1 - e]);
@@ -139,10 +128,11 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
     if (!plane->first_seen.valid) plane->first_seen = SeenFrom(plane->Latest(), pose_);
   }
   DropOldObservations(state_, visible, iteration, options_);  // bounded memory (§II.F)
-  while (!state_.poses.empty() && state_.poses.begin()->first < iteration - 2000) {
+  const int64_t forget_before = iteration - options_.motion.pose_history;
+  while (!state_.poses.empty() && state_.poses.begin()->first < forget_before) {
     state_.poses.erase(state_.poses.begin());
   }
-  while (!state_.fixed_poses.empty() && *state_.fixed_poses.begin() < iteration - 2000) {
+  while (!state_.fixed_poses.empty() && *state_.fixed_poses.begin() < forget_before) {
     state_.fixed_poses.erase(state_.fixed_poses.begin());
   }
   return estimate;
@@ -171,7 +161,8 @@ void Mapper::NoteClosing(const std::vector<Sighting>& chain, const geometry::Pos
   // direction only, or not at all.
   auto before = state_.poses.lower_bound(previous_iteration_ - 1);
   const bool turning = before != state_.poses.end() && before->first < previous_iteration_ &&
-                       Turning(before->second, pose_, previous_iteration_ - before->first);
+                       Turning(before->second, pose_, previous_iteration_ - before->first,
+                               options_.motion.turn_rate);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(information);
   closing_open_ = false;
   if (!turning && eig.eigenvalues()(1) < kOpenInformation) return;  // both directions open
@@ -193,16 +184,13 @@ void Mapper::MakePoseTie(const PoseEstimate& estimate) {
   const Group& from = state_.groups.at(static_cast<size_t>(closing_from_));
   const Group& to = state_.groups.at(static_cast<size_t>(closing_to_));
   // A loop that closes where the chain already has the sensor has nothing to spread: no tie, and
-  // the graph is not solved for it (a noise-free office closed its loop 0.2 mm off, and solving
-  // the graph moved a wall 1.1 cm). Half a centimetre or a tenth of a degree is something.
-  constexpr double kMinJump = 0.005;  // m
-  constexpr double kMinTurn = 0.002;  // rad
+  // the graph is not solved for it.
   Eigen::Vector2d jump(estimate.pose.x - closing_pose_.x, estimate.pose.y - closing_pose_.y);
   if (closing_open_) {
     jump = NormalOf(closing_open_alpha_).dot(jump) * NormalOf(closing_open_alpha_);
   }
-  if (jump.norm() < kMinJump &&
-      std::abs(geometry::WrapAngle(estimate.pose.yaw - closing_pose_.yaw)) < kMinTurn) {
+  if (jump.norm() < options_.graph.tie_min_jump &&
+      std::abs(geometry::WrapAngle(estimate.pose.yaw - closing_pose_.yaw)) < options_.graph.tie_min_turn) {
     return;
   }
   PoseTie tie;
@@ -218,8 +206,9 @@ void Mapper::MakePoseTie(const PoseEstimate& estimate) {
   tie.b = to.placement.Inverse() * estimate.pose;
   // A few per loop driven (only the first sighting of an old wall again closes it): bounded all
   // the same, for runs of hours.
-  constexpr size_t kMaxPoseTies = 1000;
-  if (state_.pose_ties.size() >= kMaxPoseTies) state_.pose_ties.erase(state_.pose_ties.begin());
+  if (state_.pose_ties.size() >= static_cast<size_t>(options_.graph.max_pose_ties)) {
+    state_.pose_ties.erase(state_.pose_ties.begin());
+  }
   state_.pose_ties.push_back(tie);
   ++state_.pose_ties_made;
 }
@@ -233,7 +222,7 @@ std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation
   geometry::Pose2 now = pose_;
   const auto last = state_.poses.find(previous_iteration_ - 1);
   if (previous_iteration_ == iteration - 1 && last != state_.poses.end() &&
-      Turning(last->second, pose_, 1)) {
+      Turning(last->second, pose_, 1, options_.motion.turn_rate)) {
     now.yaw = pose_.yaw + geometry::WrapAngle(pose_.yaw - last->second.yaw);
   }
   std::vector<int64_t> also;  // a line's older rltplane, as well (RegisterObservations)
@@ -267,7 +256,7 @@ std::vector<int64_t> Mapper::Register(int64_t iteration, std::vector<Observation
     }
     NoteClosing(sightings, pose, oldest);
   }
-  MarkJumpedEnds(match, state_, pose_, &observations);  // §II.C: another end, not the wall's
+  MarkJumpedEnds(match, state_, pose_, &observations, options_.registration);  // §II.C: another end, not the wall's
   std::vector<int64_t> visible;
   for (size_t k = 0; k < observations.size(); ++k) {
     if (match[k] >= 0 && also[k] >= 0) {
@@ -394,13 +383,14 @@ PoseEstimate Mapper::Localise(int64_t iteration, const std::vector<int64_t>& vis
   };
   PoseEstimate estimate = localise(predicted_);
   if (previous_iteration_ >= 0 &&
-      Turning(pose_, estimate.pose, iteration - previous_iteration_, estimate.yaw_sigma)) {
+      Turning(pose_, estimate.pose, iteration - previous_iteration_, options_.motion.turn_rate,
+              estimate.yaw_sigma)) {
     // The turn starts now: the sensor did not walk on after all.
     estimate = localise(pose_);
   }
   if (!initializing && estimate.planes > 0) last_walled_ = iteration;
   if (estimate.status == PoseStatus::kLost && sightings.empty() && !initializing &&
-      last_walled_ >= 0 && iteration - last_walled_ <= kMaxCoast) {
+      last_walled_ >= 0 && iteration - last_walled_ <= options_.motion.max_coast) {
     // No mapped wall in view for a moment: the segmenter reported a wall's two pieces beside a
     // door as one over the lintel, which registered to neither of their rltplanes, and the
     // door's jambs were not mapped yet (office_other_sensor at 1 cm). Localise kept the pose it
@@ -423,9 +413,8 @@ geometry::Pose2 Mapper::Predict(int64_t iteration, bool* known) const {
   // direction: where they leave one open (a hallway between door frames) the position along it
   // moves on instead of standing still as the §II.E motion model alone would, which left it
   // lagging by metres until the next door frame (and then matched that frame to the wrong door).
-  constexpr int64_t kWindow = 15;  // iterations: the velocity is averaged over this span
-  constexpr int64_t kMinSpan = 10;
-  constexpr int64_t kMaxGap = 30;   // iterations lost in a row beyond which nothing is predicted
+  const MotionOptions& o = options_.motion;
+  const int64_t kWindow = o.window, kMinSpan = o.min_span, kMaxGap = o.max_gap;
   const std::set<int64_t>& fixed = state_.fixed_poses;
   if (fixed.empty() || last_iteration_ < 0 || iteration - last_iteration_ > kMaxGap) return pose_;
   // The latest stretch of fixed poses long enough to learn from. A fixed pose or two after a
@@ -435,20 +424,19 @@ geometry::Pose2 Mapper::Predict(int64_t iteration, bool* known) const {
   // iterations after 68 of a room's one wall face ahead; the position then stood still once
   // that face stopped registering, and the next room was mapped 9 cm back (office_other_sensor,
   // σ = 1 cm, seed 23).
-  constexpr int kMaxStretches = 8;  // stretches looked back over, each one too short
   int64_t i1 = *fixed.rbegin(), i0 = i1;
   auto p0 = state_.poses.end(), p1 = state_.poses.end();
   for (int stretch = 0;; ++stretch) {
     i0 = *fixed.lower_bound(i1 - kWindow);
     p0 = state_.poses.find(i0), p1 = state_.poses.find(i1);
     if (p0 == state_.poses.end() || p1 == state_.poses.end()) return pose_;
-    if (stretch > 0 && Turning(p1->second, pose_, kMinSpan)) return pose_;
+    if (stretch > 0 && Turning(p1->second, pose_, kMinSpan, o.turn_rate)) return pose_;
     // Fixed poses must be consecutive enough to be one stretch of motion.
     const auto in_stretch =
         static_cast<int64_t>(std::distance(fixed.lower_bound(i0), fixed.upper_bound(i1)));
     if (i1 - i0 >= kMinSpan && in_stretch >= (i1 - i0) / 2) break;
     const auto first = fixed.find(i0);
-    if (first == fixed.begin() || stretch + 1 >= kMaxStretches) return pose_;
+    if (first == fixed.begin() || stretch + 1 >= o.max_stretches) return pose_;
     i1 = *std::prev(first);
   }
   // The median of the steps between consecutive fixed poses, not the way from the first to the
@@ -468,12 +456,13 @@ geometry::Pose2 Mapper::Predict(int64_t iteration, bool* known) const {
   if (steps.empty()) return pose_;
   // A span of turning on the spot learns a velocity of nought, which says nothing of how the
   // sensor moves off once the turn ends (the paths' corners).
-  *known = !Turning(p0->second, p1->second, i1 - i0);
+  *known = !Turning(p0->second, p1->second, i1 - i0, o.turn_rate);
   std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
   // Only the part along the heading: the platform drives forwards (the paper's robot, the
   // simulator's paths), and a sideways part is the noise of the fixed poses, which would walk
   // the position off along an open direction.
-  const Eigen::Vector2d step(std::clamp(steps[steps.size() / 2], -kMaxStep, kMaxStep), 0.0);
+  const Eigen::Vector2d step(std::clamp(steps[steps.size() / 2], -options_.localisation.max_step,
+                                         options_.localisation.max_step), 0.0);
   // Turning on the spot, standing still is the motion: the heading turned over the last iteration
   // and over the last two. A heading from short walls alone wobbles back and forth by more than a
   // turn's step, but its wobbles do not add up: walking through a door with only its 0.15 m jambs
@@ -482,10 +471,10 @@ geometry::Pose2 Mapper::Predict(int64_t iteration, bool* known) const {
   // (office_other_sensor, σ = 1 cm, seed 41: ATE 0.049 m).
   auto before = state_.poses.lower_bound(last_iteration_ - 1);
   if (before != state_.poses.end() && before->first < last_iteration_ &&
-      Turning(before->second, pose_, last_iteration_ - before->first)) {
+      Turning(before->second, pose_, last_iteration_ - before->first, o.turn_rate)) {
     auto earlier = state_.poses.lower_bound(before->first - 1);
     if (earlier == state_.poses.end() || earlier->first >= before->first ||
-        Turning(earlier->second, pose_, last_iteration_ - earlier->first)) {
+        Turning(earlier->second, pose_, last_iteration_ - earlier->first, o.turn_rate)) {
       *known = true;
       return pose_;
     }
@@ -525,7 +514,7 @@ MapSnapshot Mapper::Map() const {
     m.end_known[1] = placed.known == Known::kPoint && (placed.ref == 1 || m.both_ends_known);
     snapshot.planes.push_back(std::move(m));
   }
-  CleanUpWalls(&snapshot.planes, options_.corner_radius);  // §II.D end
+  CleanUpWalls(&snapshot.planes, options_.published_map);  // §II.D end
   for (const Group& g : state_.groups) {
     snapshot.groups.push_back({g.id, g.relative.basis, g.members});
   }

@@ -82,10 +82,8 @@ double RayToLine(const Observation& obs, const Eigen::Vector2d& u) {
 
 }  // namespace
 
-void MarkOccludedEdges(std::vector<Observation>* observations) {
-  // rad: a nearer plane's edge this close in bearing is on the same line of sight.
-  constexpr double kBearing = 0.0175;
-  constexpr double kNearer = 0.05;  // m
+void MarkOccludedEdges(std::vector<Observation>* observations,
+                       const RegistrationOptions& options) {
   auto& obs = *observations;
   // Each plane's view, as bearings from its first edge counter-clockwise: worked out once
   // rather than for every edge tested against it (four arctangents a pair, a tenth of the
@@ -114,14 +112,14 @@ void MarkOccludedEdges(std::vector<Observation>* observations) {
         // in a wall the segmenter reports as one rectangle). A wall end is never seen there.
         const View& v = views[b];
         const double off = std::remainder(bearing - v.lo, 2 * M_PI);
-        if (off < -kBearing || off > v.span + kBearing) continue;
+        if (off < -options.occlusion_bearing || off > v.span + options.occlusion_bearing) continue;
         const Eigen::Vector2d& first = obs[b].edge[v.swapped ? 1 : 0];
         const Eigen::Vector2d& last = obs[b].edge[v.swapped ? 0 : 1];
         // Within the plane's view: its line on this ray; just beside it: its edge there.
         const double nearest = off < 0.0      ? first.norm()
                                : off > v.span ? last.norm()
                                               : RayToLine(obs[b], u);
-        if (nearest < range - kNearer) obs[a].cut[e] = true;
+        if (nearest < range - options.occlusion_nearer) obs[a].cut[e] = true;
       }
     }
   }

@@ -17,8 +17,6 @@ namespace {
 
 using Eigen::Vector2d;
 
-constexpr double kRobust = 3.0;  // sigmas
-constexpr double kInitialDamping = 1e-3;  // Levenberg-Marquardt, relative to the diagonal
 
 // One plane's placement in two groups' relative maps.
 struct Tie {
@@ -205,12 +203,13 @@ struct Normal {
   std::vector<Eigen::Triplet<double>> h;
   Eigen::VectorXd g;
   double cost = 0.0;
+  double robust = 3.0;  // PoseGraphOptions::robust
   // Adds one residual r (weight w) with Jacobian entries over the two nodes' (x, y, yaw).
-  // The Cauchy kernel (scale kRobust sigmas) weighs the residual down when it is an outlier: a
+  // The Cauchy kernel (scale `robust` sigmas) weighs the residual down when it is an outlier: a
   // tie through a plane misplaced in one group's relative map must not bend the whole loop.
   void Add(double r, double w, int i, const Eigen::Vector3d& ji, int j, const Eigen::Vector3d& jj) {
-    const double s = w * r * r / (kRobust * kRobust);
-    cost += kRobust * kRobust * std::log1p(s);
+    const double s = w * r * r / (robust * robust);
+    cost += robust * robust * std::log1p(s);
     w /= 1.0 + s;
     const int idx[2] = {3 * i, 3 * j};
     const Eigen::Vector3d* jac[2] = {&ji, &jj};
@@ -234,6 +233,7 @@ Normal Linearise(const std::vector<Tie>& ties, const std::vector<const PoseTie*>
                  const std::vector<geometry::Pose2>& x0, const PoseGraphOptions& options) {
   const int n = static_cast<int>(x.size());
   Normal eq;
+  eq.robust = options.robust;
   eq.g = Eigen::VectorXd::Zero(3 * n);
   eq.h.reserve(ties.size() * 3 * 36 + 3 * n);
   const double wa = 1.0 / (options.angle_sigma * options.angle_sigma);
@@ -393,7 +393,7 @@ PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptio
   // harder. Plain Gauss-Newton overshot: through the robust kernel and the groups the ties
   // leave nearly free, its first step raised the cost several times over (a hallway loop's
   // consistent map, 52 -> 224), and the iterations ended in another minimum metres away.
-  double damping = kInitialDamping;
+  double damping = options.initial_damping;
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     h.setFromTriplets(eq.h.begin(), eq.h.end());
     for (int k = 0; k < 3 * n; ++k) h.coeffRef(k, k) *= 1.0 + damping;

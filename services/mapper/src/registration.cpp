@@ -17,15 +17,6 @@ double Overlap(double a0, double a1, double b0, double b1) {
   return std::max(0.0, std::min(a1, b1) - std::max(a0, b0)) / shorter;
 }
 
-// m: an end seen this far from where it last was is another end. Poses a few seconds apart
-// agree to centimetres and a wall end moves continuously, while a piece's door-side end lies a
-// door's width or more from the wall's.
-constexpr double kEndJump = 0.5;
-constexpr int64_t kEndMemory = 90;  // iterations an uncut end's sighting is compared against
-
-// m: a plane's end lies on another plane's line to this: a few times the edges' noise at
-// σ = 1 cm, and well below a wall's thickness (a jamb, a recess).
-constexpr double kSameSurface = 0.05;
 
 // Does `piece` lie on `wall`'s line, turned by no more than the plane-equation test allows and
 // overlapping it in height? Judged by the distance to the wall's line at the piece's middle,
@@ -40,7 +31,7 @@ bool OnLineOf(const Observation& piece, const Observation& wall,
   const double angle = std::acos(std::clamp(piece.normal.dot(wall.normal), -1.0, 1.0));
   const Eigen::Vector2d middle = 0.5 * (piece.edge[0] + piece.edge[1]);
   return angle <= options.max_angle &&
-         std::abs(wall.normal.dot(middle) + wall.d) <= kSameSurface &&
+         std::abs(wall.normal.dot(middle) + wall.d) <= options.same_surface &&
          Overlap(wall.z_min, wall.z_max, piece.z_min, piece.z_max) >= options.min_overlap;
 }
 
@@ -71,7 +62,7 @@ bool LiesAlong(const Observation& piece, const Observation& wall,
   bool touches = false;
   for (int e = 0; e < 2; ++e) {
     const double s = t.dot(piece.edge[e]);
-    if (s >= w0 - kSameSurface && s <= w1 + kSameSurface) {
+    if (s >= w0 - options.same_surface && s <= w1 + options.same_surface) {
       touches = true;
     } else if (!at_view_edge || !at_view_edge(piece.edge[e])) {
       return false;
@@ -269,7 +260,8 @@ std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observ
 }
 
 void MarkJumpedEnds(const std::vector<int64_t>& match, const MapperState& state,
-                    const geometry::Pose2& pose, std::vector<Observation>* observations) {
+                    const geometry::Pose2& pose, std::vector<Observation>* observations,
+                    const RegistrationOptions& options) {
   for (size_t k = 0; k < observations->size(); ++k) {
     const auto it = match[k] >= 0 ? state.planes.find(match[k]) : state.planes.end();
     if (it == state.planes.end()) continue;
@@ -281,11 +273,11 @@ void MarkJumpedEnds(const std::vector<int64_t>& match, const MapperState& state,
       // The latest uncut sighting of this end with a known pose.
       for (size_t i = all.size(); i > 0; --i) {
         const Observation& then = all[i - 1];
-        if (then.iteration < obs.iteration - kEndMemory) break;
+        if (then.iteration < obs.iteration - options.end_memory) break;
         const auto seen_from = state.poses.find(then.iteration);
         if (then.cut[e] || seen_from == state.poses.end()) continue;
         const Eigen::Vector2d jump = seen_from->second * then.edge[e] - pose * obs.edge[e];
-        obs.cut[e] = std::abs(t.dot(jump)) > kEndJump;
+        obs.cut[e] = std::abs(t.dot(jump)) > options.end_jump;
         break;
       }
     }

@@ -9,8 +9,6 @@
 namespace relplane::mapper {
 namespace {
 
-constexpr int64_t kSweepPeriod = 64;  // iterations between sweeps over every plane
-
 // The longest comparison interval `id` has with another member of `group`.
 double MemberInterval(const MapperState& state, const Group& group, int64_t id) {
   double longest = 0.0;
@@ -166,7 +164,7 @@ void DropOldObservations(MapperState& state, const std::vector<int64_t>& visible
     if (RltPlane* plane = state.Plane(id)) plane->DropBefore(before);
   }
   // Planes out of view keep theirs until the next sweep.
-  if (state.last_sweep >= 0 && now - state.last_sweep < kSweepPeriod) return;
+  if (state.last_sweep >= 0 && now - state.last_sweep < options.regrouping.sweep_period) return;
   state.last_sweep = now;
   for (auto& [id, plane] : state.planes) plane.DropBefore(before);
 }

@@ -27,10 +27,12 @@ struct WallSegment {
 // surface's) unless the crossing wall ends there too (an L corner), and an end is cut back by
 // at most a quarter of its wall (a line through its middle is not its corner). A radius of 0
 // moves nothing. Returns how many ends moved.
-int SnapSegmentEnds(std::vector<WallSegment>* walls, double radius);
+int SnapSegmentEnds(std::vector<WallSegment>* walls, double radius,
+                    const PublishedMapOptions& options = {});
 
 // SnapSegmentEnds on the published map's walls (the planes with four vertices in Mapper::Map's
 // order and a horizontal normal).
-int SnapEndsToCorners(std::vector<MappedPlane>* planes, double radius);
+int SnapEndsToCorners(std::vector<MappedPlane>* planes, double radius,
+                      const PublishedMapOptions& options = {});
 
 }  // namespace relplane::mapper

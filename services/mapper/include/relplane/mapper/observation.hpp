@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "relplane/common/geometry.hpp"
+#include "relplane/mapper/options.hpp"
 
 namespace relplane::mapper {
 
@@ -76,7 +77,8 @@ std::optional<Observation> MakeObservation(const PlaneInput& input, int64_t iter
 // has an edge on the same line of sight, closer to the sensor, or lies across that line of
 // sight closer to the sensor (the edge is seen through a hole in it, e.g. a door in a wall the
 // segmenter reports as one rectangle).
-void MarkOccludedEdges(std::vector<Observation>* observations);
+void MarkOccludedEdges(std::vector<Observation>* observations,
+                       const RegistrationOptions& options = {});
 
 // Frame angle of a wall with unit 2D normal n.
 inline double AlphaOf(const Eigen::Vector2d& n) { return std::atan2(n.x(), -n.y()); }

@@ -2,6 +2,7 @@
 // Options of the Relative Plane mapper, one plain struct per component with defaults that hold
 // for any indoor world and sensor (issue 4: "tune nothing to one scenario").
 
+#include <cmath>
 #include <cstdint>
 
 namespace relplane::mapper {
@@ -13,6 +14,18 @@ struct RegistrationOptions {
   double max_distance = 0.3;         // m between plane offsets d
   double min_overlap = 0.3;          // of the shorter extent along the wall (and in height)
   double max_wall_normal_z = 0.3;    // |normal.z| above this is floor/ceiling: not a wall (2½D)
+  // m: an end seen this far from where it last was is another end: poses a few seconds apart
+  // agree to centimetres and a wall end moves continuously, while a piece's door-side end lies a
+  // door's width or more from the wall's.
+  double end_jump = 0.5;
+  int end_memory = 90;  // iterations an uncut end's sighting is compared against
+  // m: a plane's end lies on another plane's line to this: a few times the edges' noise, and
+  // well below a wall's thickness (a jamb, a recess).
+  double same_surface = 0.05;
+  // rad: a nearer plane's edge this close in bearing is on the same line of sight (an edge
+  // behind it is occluded, not a wall end).
+  double occlusion_bearing = 0.0175;
+  double occlusion_nearer = 0.05;  // m: ... when it is at least this much nearer
 };
 
 // §II.A end: backtracking / loop closure against the global map.
@@ -38,6 +51,9 @@ struct GroupingOptions {
   // rad: an ungrouped rltplane whose orientation relative to a plane seen with it spreads more
   // than this (standard deviation over its last min_observations sightings) is not grouped yet
   double max_orientation_spread = 0.035;
+  // iterations an ungrouped rltplane must share with the plane it is judged against for its
+  // orientation spread to be judged at all
+  int min_common_orientation = 4;
 };
 
 // §II.C pairwise comparison and static edges.
@@ -52,6 +68,7 @@ struct ComparisonOptions {
   int freeze_lag = 90;             // iterations; sub-intervals older than this are frozen
   double min_motion = 0.05;        // m: edges must move this much in the sensor frame (std) for
                                    // a sub-interval to tell static from dynamic edges
+  double uncut_share = 0.8;        // of a sub-interval's samples, for an edge to be judged
 };
 
 // §II.D / §II.E localisation.
@@ -59,20 +76,53 @@ struct LocalisationOptions {
   double min_information = 0.5;  // smallest eigenvalue (m^-2 units) of the position system
                                  // for TRACKING; below it the motion model applies
   double prior_weight = 1e-4;    // weight of the previous position in the least squares
+  double outlier = 0.3;          // m: a wall this far from its line is left out
+  // m: a wall fitting the pose worse than `suspect` is tried without; left out where the rest,
+  // without it, fit within `suspect` and put it further off than `misregistered`: more than a
+  // map's error, less than the depth of a pilaster or a recess beside a wall.
+  double suspect = 0.05;
+  double misregistered = 0.15;
+  // m per iteration: how far a learnt velocity may carry the position off in an iteration.
+  double drift_rate = 0.002;
+  // m: how far off the prediction may be an iteration after a pose that wall ends fixed along
+  // the walls.
+  double tracked_prediction = 0.01;
+  double end_gate = 0.1;  // m: the motion model (§II.E) snaps to a mapped end this close
+  // cos of the angle: an open direction this near the heading is one the sensor may move along.
+  double along_heading = 0.7071;
+  // m: the farthest the platform moves in an iteration (3 m/s at 30 Hz): what a learnt velocity
+  // is capped at, and how far ahead of the previous pose a wall end may put it when no motion
+  // is known (a step for each iteration the position has been held still, up to max_held).
+  double max_step = 0.1;
+  int max_held = 5;
+};
+
+// §II.E the motion model: a constant velocity learnt from the poses the walls fixed.
+struct MotionOptions {
+  // rad per iteration (17 deg/s at 30 Hz): turning faster than this (by more than twice the
+  // heading's own error) is turning on the spot, and the sensor is taken not to move on.
+  double turn_rate = 0.01;
+  int window = 15;          // iterations the velocity is averaged over
+  int min_span = 10;        // iterations: the shortest stretch of fixed poses it is learnt from
+  int max_gap = 30;         // iterations lost in a row beyond which nothing is predicted
+  int max_stretches = 8;    // stretches looked back over, each one too short
+  // iterations after the last pose mapped walls placed through which a frame with no mapped
+  // wall in view still gets the learnt motion's pose (half a second at 30 Hz)
+  int max_coast = 15;
+  int pose_history = 2000;  // iterations of poses kept
 };
 
 // Soft-linked groups (§V future work): least squares over the group placements at loop closure.
 struct PoseGraphOptions {
   bool enabled = true;
-  // rad, agreement of a shared plane's orientation in two groups. 0.005 until 2026-12-05: at
-  // that, a loop's closing solve turned a 17.5 m leg by 0.16 degrees rather than move its
-  // groups 2-3 cm along, and the next leg's walls went 6 cm across (loop_other_sensor, σ = 1 cm).
+  // rad, agreement of a shared plane's orientation in two groups: tight enough that a loop's
+  // closing solve moves groups along rather than turn a long leg.
   double angle_sigma = 0.002;
   double position_sigma = 0.01;  // m, agreement of its line and static edge, plus the spread
                                  // of the static pairings that placed it (Placement::variance)
   // m (and rad): each group's placement as chained, weighed as the chain weighs its prior
-  // against a line (localisation.prior_weight 1e-4: position_sigma / sqrt(1e-4)). At 100 m, a
-  // gauge only, a direction the ties hardly observe slid by metres for a negligible gain.
+  // against a line (localisation.prior_weight 1e-4: position_sigma / sqrt(1e-4)); a gauge only
+  // lets a direction the ties hardly observe slide.
   double prior_sigma = 1.0;
   // m and rad: agreement of the two poses of a loop closed by backtracking (PoseTie), the
   // motion model's over the few iterations the sensor sees neither side's wall ends; the same
@@ -80,6 +130,13 @@ struct PoseGraphOptions {
   double pose_tie_sigma = 0.02;
   double pose_tie_angle_sigma = 0.01;
   int max_iterations = 10;
+  double robust = 3.0;            // sigmas: the Cauchy kernel's scale
+  double initial_damping = 1e-3;  // Levenberg-Marquardt, relative to the diagonal
+  // A loop that closes where the chain already has the sensor has nothing to spread: no tie
+  // unless the pose jumps by at least this much (m) or turns by this much (rad).
+  double tie_min_jump = 0.005;
+  double tie_min_turn = 0.002;
+  int max_pose_ties = 1000;  // the latest kept (a few per loop driven; bounded for long runs)
 };
 
 // §II.F reordering and regrouping, and how far back observations are kept for them. Ages are
@@ -92,6 +149,26 @@ struct RegroupingOptions {
   int min_interval = 10;    // iterations a member must share with another one of its group
   int freeze_after = 900;   // the relative map is frozen; observations older than this (plus
                             // the co-visibility window) are dropped: regrouping cannot reach them
+  int sweep_period = 64;    // iterations between sweeps dropping old observations of every plane
+};
+
+// The published map (MAP): duplicate walls merged, ends drawn at corners.
+struct PublishedMapOptions {
+  // m: a wall's end is drawn at the corner it meets when the crossing wall's line passes this
+  // close (about a ray spacing at the range limit); 0: off.
+  double corner_radius = 0.1;
+  double merge_angle = 0.05;    // rad: walls this close in orientation (and offset) are merged
+  double merge_distance = 0.1;  // m
+  // m: two walls on one line sharing more than this where neither end in the shared stretch was
+  // ever seen as a wall end are one wall seen in two stretches.
+  double cut_overlap = 0.2;
+  // A wall end moves to a corner only inside the wall by up to this many corner radii, and by
+  // at most this fraction of the wall's length from each end.
+  double min_shortened_radii = 2.0;
+  double max_shortened_fraction = 0.25;
+  // rad: crossing walls closer than this to parallel make no corner (where their lines cross
+  // moves far with a small error in either orientation)
+  double min_corner_angle = 30.0 * M_PI / 180.0;
 };
 
 struct StartPose {
@@ -107,13 +184,12 @@ struct MapperOptions {
   GroupingOptions grouping;
   ComparisonOptions comparison;
   LocalisationOptions localisation;
+  MotionOptions motion;
   PoseGraphOptions graph;
   RegroupingOptions regrouping;
+  PublishedMapOptions published_map;
   StartPose start_pose;
   int max_observations = 3000;  // per rltplane, a hard cap besides the regrouping horizon
-  // m: the published map draws a wall's end at the corner it meets when the crossing wall's
-  // line passes this close (SnapEndsToCorners; about a ray spacing at the range limit); 0: off.
-  double corner_radius = 0.1;
 };
 
 }  // namespace relplane::mapper

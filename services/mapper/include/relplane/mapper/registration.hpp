@@ -67,6 +67,7 @@ std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observ
 // edge (§II.C) the rltplane learnt at the other place: the end mapped metres away would be
 // taken for it. `pose` is the latest estimate (one frame's motion is far below the jump).
 void MarkJumpedEnds(const std::vector<int64_t>& match, const MapperState& state,
-                    const geometry::Pose2& pose, std::vector<Observation>* observations);
+                    const geometry::Pose2& pose, std::vector<Observation>* observations,
+                    const RegistrationOptions& options = {});
 
 }  // namespace relplane::mapper
