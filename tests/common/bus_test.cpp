@@ -31,6 +31,38 @@ TEST(Bus, TypedRoundTripOnMemq) {
   EXPECT_TRUE(rejects.empty());
 }
 
+// The subscription keeps one message for every delivery; lcm-gen's decoder leaves an array
+// untouched when its declared length is 0, so an empty message after a full one must not keep
+// the full one's elements (nor a plane set the previous set's planes).
+TEST(Bus, AKeptMessageCarriesNothingOfThePreviousOne) {
+  auto bus = OpenLcmBus("memq://");
+  std::vector<size_t> cloud_sizes, plane_counts;
+  Subscribe<point_cloud_t>(
+      *bus, "SENSOR_POINTS",
+      [&](const point_cloud_t& m) {
+        EXPECT_EQ(m.x.size(), static_cast<size_t>(m.num_points));
+        cloud_sizes.push_back(m.x.size() + m.y.size() + m.z.size());
+      },
+      [](const std::string& r) { ADD_FAILURE() << r; });
+  Subscribe<map_t>(
+      *bus, "MAP", [&](const map_t& m) { plane_counts.push_back(m.planes.size()); },
+      [](const std::string& r) { ADD_FAILURE() << r; });
+  point_cloud_t full{};
+  full.num_points = 3;
+  full.x = full.y = full.z = {1, 2, 3};
+  map_t map{};
+  map.num_planes = 2;
+  map.planes.resize(2);
+  for (const point_cloud_t& cloud : {full, point_cloud_t{}, full}) {
+    ASSERT_TRUE(Publish(*bus, "SENSOR_POINTS", cloud));
+  }
+  for (const map_t& m : {map, map_t{}}) ASSERT_TRUE(Publish(*bus, "MAP", m));
+  while (bus->Handle(20) > 0) {
+  }
+  EXPECT_EQ(cloud_sizes, (std::vector<size_t>{9, 0, 9}));
+  EXPECT_EQ(plane_counts, (std::vector<size_t>{2, 0}));
+}
+
 TEST(Bus, ForeignTypeIsRejectedNotDelivered) {
   auto bus = OpenLcmBus("memq://");
   int delivered = 0;

@@ -1,5 +1,5 @@
 // libFuzzer target for the segmenter's input path: SENSOR_POINTS bytes -> bus::Subscribe
-// (size limit, defensive Decode) -> SegmenterService (max_points, FromPointCloud, seq check) ->
+// (size limit, defensive Decode) -> SegmenterService (max_points, TakePointCloud, seq check) ->
 // Segmenter::Segment -> PLANES. Inputs are small clouds of points on a few planes built from the
 // fuzzer's bytes, with hostile numbers mixed in, now and then raw bytes behind the true
 // fingerprint; a few frames per input, since the segmenter seeds each frame from the last.

@@ -154,6 +154,18 @@ Buses ChooseBuses(const Request& request) {
   return buses;
 }
 
+// The udpm ports of the run's buses, to see the subscribers bind; empty when a bus has none
+// (the supervisor then waits a moment instead).
+std::vector<int> BusPorts(const Buses& buses) {
+  std::vector<int> ports;
+  for (const std::string& bus : {buses.url, buses.cloud_url}) {
+    const std::optional<int> port = PortOfUrl(bus);
+    if (!port) return {};
+    if (ports.empty() || ports[0] != *port) ports.push_back(*port);
+  }
+  return ports;
+}
+
 // One bus.lcmlog holding every channel: the cloud recorder's log merged into it.
 void MergeCloudLog(const std::string& run_dir) {
   const std::string log = run_dir + "/bus.lcmlog", clouds = run_dir + "/" + kCloudLog;
@@ -249,16 +261,7 @@ int Run(const Request& request, const Resolved& scenario, const Cast& cast, cons
 
   supervision.grace_s = scenario.options.grace_s;
   supervision.drain_s = scenario.options.drain_s;
-  for (const std::string& bus : {url, buses.cloud_url}) {
-    const std::optional<int> port = PortOfUrl(bus);
-    if (!port) {
-      supervision.bus_ports.clear();  // cannot see every subscriber bind: wait a moment instead
-      break;
-    }
-    if (supervision.bus_ports.empty() || supervision.bus_ports[0] != *port) {
-      supervision.bus_ports.push_back(*port);
-    }
-  }
+  supervision.bus_ports = BusPorts(buses);
   supervision.source = cast.source;
   supervision.restart = scenario.options.restart;
   const int code = Supervise(RecorderCommands(cast.lcm_logger, url, buses.cloud_url, run_dir,

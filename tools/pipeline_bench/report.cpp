@@ -24,6 +24,7 @@ std::string Fixed(double v, int digits = 2) {
 void JsonSummary(const char* name, const LatencySummary& s, std::ostream& out) {
   out << "\"" << name << "\": {\"p50_ms\": " << Fixed(s.p50_ms, 3)
       << ", \"p99_ms\": " << Fixed(s.p99_ms, 3) << ", \"max_ms\": " << Fixed(s.max_ms, 3)
+      << ", \"mean_ms\": " << Fixed(s.mean_ms, 3)
       << ", \"count\": " << s.count << "}";
 }
 
