@@ -146,6 +146,7 @@ ServiceOptions ReadServiceOptions(Reader& r) {
     r.Fail("sensor", "unknown sensor '" + sensor + "' (" + names + ")");
   }
   ReadPositive(r, "layer_rms_share", &o.sensor.layer_rms_share);
+  ReadPositive(r, "surface_sigma_max", &o.sensor.surface_sigma_max);
   long max_points = static_cast<long>(s.max_points);
   ReadPositive(r, "max_points", &max_points);
   s.max_points = max_points;

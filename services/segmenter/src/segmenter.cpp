@@ -141,7 +141,21 @@ int DropLayers(const SensorOptions& sensor, const std::vector<DetectedPlane>& de
 
 }  // namespace
 
-Segmenter::Segmenter(Options options) : options_(options) {}
+namespace {
+
+// With a known camera a plane's own noise is what remains on top of the camera's.
+Options WithSensor(Options options) {
+  if (options.sensor.Known()) {
+    options.sigma_max = std::max(options.sigma_min,
+                                 std::min(options.sigma_max, options.sensor.surface_sigma_max));
+    options.sigma_initial = std::min(options.sigma_initial, options.sigma_max);
+  }
+  return options;
+}
+
+}  // namespace
+
+Segmenter::Segmenter(Options options) : options_(WithSensor(options)) {}
 
 Result Segmenter::Segment(const Cloud& input) {
   Result result;

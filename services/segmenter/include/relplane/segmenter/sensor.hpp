@@ -22,6 +22,10 @@ struct SensorOptions {
   // normal at its range is the set of points of one quantized depth (a flat layer of a tilted
   // surface's staircase), not a surface: it is dropped and its points assigned again.
   float layer_rms_share = 0.5f;
+  // With the camera's noise known, what a plane learns on top of it is the surface's own
+  // roughness: at most this (metres; caps Options::sigma_max). A wider band lets a large plane
+  // take in the small faces beside it.
+  float surface_sigma_max = 0.005f;
 
   bool Known() const { return !preset.empty(); }
   // Sets preset and model; false for an unknown name (nothing changed).
