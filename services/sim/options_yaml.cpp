@@ -80,7 +80,16 @@ GeneratorSpec ReadGenerator(Reader& r) {
     RequireNonNegative(r, "frame_depth", p.frame_depth);
     return p;
   }
-  r.Fail("type", "unknown generator '" + type + "' (straight_hallway, hallway_loop, office)");
+  if (type == "random_indoor") {
+    RandomIndoorParams p;
+    long long seed = static_cast<long long>(p.seed);
+    r.Read("seed", &seed);
+    if (seed < 0) r.Fail("seed", "must not be negative");
+    p.seed = static_cast<uint64_t>(seed);
+    return p;
+  }
+  r.Fail("type", "unknown generator '" + type +
+                     "' (straight_hallway, hallway_loop, office, random_indoor)");
 }
 
 void ReadWorld(Reader r, WorldOptions* w) {
@@ -121,6 +130,25 @@ void ReadWorld(Reader r, WorldOptions* w) {
   if (w->generators.empty() && w->walls.empty() && w->rectangles.empty()) {
     r.Fail("generators", "the world is empty: give generators, walls or rectangles");
   }
+}
+
+// A generated world comes with its route: the trajectory's defaults, which the scenario's own
+// keys still override.
+void RouteOfGeneratedWorld(Reader r, const WorldOptions& world, TrajectoryOptions* t) {
+  const RandomIndoorParams* generated = nullptr;
+  for (const GeneratorSpec& g : world.generators) {
+    if (const auto* p = std::get_if<RandomIndoorParams>(&g)) {
+      if (generated != nullptr) r.Fail("generators", "at most one random_indoor generator");
+      generated = p;
+    }
+  }
+  if (generated == nullptr) return;
+  const IndoorLayout layout = MakeRandomIndoor(*generated);
+  t->waypoints = layout.route;
+  t->closed = layout.closed;
+  t->laps = layout.laps;
+  t->drive_back = layout.drive_back;
+  t->turn = TurnMode::kInPlace;
 }
 
 void ReadTrajectory(Reader r, TrajectoryOptions* t) {
@@ -264,6 +292,7 @@ ServiceOptions ReadServiceOptions(Reader reader) {
     reader.Fail("drop_fraction", "must be in [0, 1)");
   }
   ReadWorld(reader.Child("world"), &o.sim.world);
+  RouteOfGeneratedWorld(reader.Child("world"), o.sim.world, &o.sim.trajectory);
   ReadTrajectory(reader.Child("trajectory"), &o.sim.trajectory);
   ReadSensor(reader.Child("sensor"), &o.sim.sensor);
   ReadOdometry(reader.Child("odometry"), &o.odometry);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <relplane/map_t.hpp>
+#include <relplane/odometry_t.hpp>
 #include <relplane/plane_set_t.hpp>
 #include <relplane/point_cloud_t.hpp>
 #include <relplane/pose_t.hpp>
@@ -48,7 +49,7 @@ TEST(HostileBus, ServicesKeepRunningOnRandomBytes) {
         {"SENSOR_POINTS", Junk<point_cloud_t>(rng)}, {"PLANES", Junk<plane_set_t>(rng)},
         {"POSE", Junk<pose_t>(rng)},                 {"MAP", Junk<map_t>(rng)},
         {"SIM_TRUTH", Junk<pose_t>(rng)},            {"SIM_WORLD", Junk<map_t>(rng)},
-        {"STATUS", Junk<status_t>(rng)}};
+        {"STATUS", Junk<status_t>(rng)},            {"ODOMETRY", Junk<odometry_t>(rng)}};
     for (const auto& [channel, bytes] : junk) bus->PublishRaw(channel, bytes.data(), bytes.size());
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <relplane/map_t.hpp>
+#include <relplane/odometry_t.hpp>
 #include <relplane/point_cloud_t.hpp>
 #include <relplane/pose_t.hpp>
 
@@ -28,6 +29,8 @@ struct Recording {
   std::vector<map_t> worlds;
   int cloud_events = 0;
   int truth_events = 0;
+  int odometry_events = 0;
+  std::vector<odometry_t> odometry;
   int other_events = 0;
 };
 
@@ -55,6 +58,9 @@ Recording ReadLog(const std::string& path) {
       const auto pose = Decode<pose_t>(*event);
       r.truth[pose.seq] = pose;
       ++r.truth_events;
+    } else if (channel == "ODOMETRY") {
+      r.odometry.push_back(Decode<odometry_t>(*event));
+      ++r.odometry_events;
     } else if (channel == "SIM_WORLD") {
       r.worlds.push_back(Decode<map_t>(*event));
     } else {
@@ -145,6 +151,7 @@ TEST(SimRecording, OneCloudAndTruthPerIterationOnTheTrueWalls) {
     const pose_t& pose = r.truth.at(seq);
     EXPECT_EQ(pose.utime, cloud.utime);
     EXPECT_EQ(pose.status, int8_t{pose_t::STATUS_TRUTH});
+    for (const double c : pose.covariance) EXPECT_EQ(c, 0.0) << "the truth is exact";
     const Eigen::Quaterniond q(pose.orientation[0], pose.orientation[1], pose.orientation[2],
                                pose.orientation[3]);
     const Eigen::Vector3d t(pose.position[0], pose.position[1], pose.position[2]);
@@ -174,7 +181,8 @@ TEST(SimRecording, OneCloudAndTruthPerIterationOnTheTrueWalls) {
 }
 
 // ./relplane replay: lcm-logplayer feeds a recorded run's simulator channels, and only those,
-// to fresh services (fakes here) on a new bus; the new recording holds every one of them.
+// to fresh services (fakes here) on a new bus; the new recording holds every one of them,
+// wheel odometry (ODOMETRY, asked for by sim.odometry) included.
 TEST(SimRecording, ReplayFeedsTheRecordedSimulatorChannelsToFreshServices) {
   const std::string scenario = SourceDir() + "/scenarios/straight_hallway.yaml";
   TempDir dir;
@@ -182,7 +190,8 @@ TEST(SimRecording, ReplayFeedsTheRecordedSimulatorChannelsToFreshServices) {
   std::string output;
   ASSERT_EQ(
       RunLauncher({scenario, "--out", live, "--lcm-url", TestBusUrl(47116), "--set",
-                   "launch.services=[sim]", "--set", "launch.rate_hz=60", "--iterations", "20"},
+                   "launch.services=[sim]", "--set", "launch.rate_hz=60", "--set",
+                   "sim.odometry.enabled=true", "--iterations", "20"},
                   120, &output),
       0)
       << output;
@@ -210,6 +219,12 @@ TEST(SimRecording, ReplayFeedsTheRecordedSimulatorChannelsToFreshServices) {
   const Recording replayed = ReadLog(replay + "/bus.lcmlog");
   EXPECT_EQ(replayed.cloud_events, 20);
   EXPECT_EQ(replayed.truth_events, 20);
+  EXPECT_EQ(original.odometry_events, 20);  // one reading per iteration by default
+  ASSERT_EQ(replayed.odometry.size(), original.odometry.size());
+  for (size_t k = 0; k < original.odometry.size(); ++k) {
+    EXPECT_EQ(replayed.odometry[k].seq, static_cast<int64_t>(k));
+    EXPECT_EQ(replayed.odometry[k].position[0], original.odometry[k].position[0]);
+  }
   EXPECT_EQ(replayed.worlds.size(), original.worlds.size());
   EXPECT_EQ(replayed.other_events, 0) << "STATUS and the like must not be replayed";
   ASSERT_EQ(replayed.clouds.size(), original.clouds.size());

@@ -11,7 +11,7 @@
 namespace relplane::mapper {
 namespace {
 
-constexpr double kSigma = 0.01;  // m, a wall's line
+constexpr double kSigma = 0.01;          // m, a wall's line
 constexpr double kHeadingSigma = 0.002;  // rad
 
 // A wall's line seen at `point` (world frame, relative to the sensor) with unit normal at
@@ -36,8 +36,8 @@ double Alignment(const Eigen::Vector3d& v, const Eigen::Vector3d& axis) {
 }
 
 TEST(Observability, TwoPerpendicularWallsWithHeadingFixEverything) {
-  const Observability o = AnalyseObservability(
-      {Wall(0.0, {2.0, 0.5}), Wall(M_PI / 2, {0.5, 3.0}), Heading()});
+  const Observability o =
+      AnalyseObservability({Wall(0.0, {2.0, 0.5}), Wall(M_PI / 2, {0.5, 3.0}), Heading()});
   EXPECT_TRUE(o.FullyConstrained());
   EXPECT_NEAR(std::sqrt(o.covariance(0, 0)), kSigma, 0.2 * kSigma);
   EXPECT_NEAR(std::sqrt(o.covariance(1, 1)), kSigma, 0.2 * kSigma);
@@ -66,8 +66,8 @@ TEST(Observability, OneWallLeavesTheDirectionAlongItOpen) {
 
 TEST(Observability, CorridorOfParallelWallsLeavesItsAxisOpen) {
   // A corridor along y: walls at x = -1 and x = +1, normals +-x, seen 2 m ahead.
-  const Observability o = AnalyseObservability(
-      {Wall(0.0, {1.0, 2.0}), Wall(M_PI, {-1.0, 2.0}), Heading()});
+  const Observability o =
+      AnalyseObservability({Wall(0.0, {1.0, 2.0}), Wall(M_PI, {-1.0, 2.0}), Heading()});
   ASSERT_EQ(o.unconstrained.size(), 1u);
   EXPECT_GT(Alignment(o.unconstrained[0], Eigen::Vector3d::UnitY()), 0.999);
   EXPECT_GT(o.covariance(1, 1), 100.0 * o.covariance(0, 0));

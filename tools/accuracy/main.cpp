@@ -29,6 +29,8 @@ const std::string kScenariosDir = std::string(RELPLANE_SOURCE_DIR) + "/scenarios
 struct Flags {
   std::vector<std::string> scenarios;
   std::string seeds;
+  std::string world_seeds;
+  int generated = 0;
   double sigma = -1.0;
   int laps = 0;
   std::vector<std::string> overrides;
@@ -66,9 +68,15 @@ int Main(int argc, char** argv) {
       "--min-wall-length 0.31",
       "relplane-accuracy");
   parser.Add("scenarios", &f.scenarios,
-             "scenario files, or names of the project's scenarios (office, hallway_loop, ...)")
-      .Required();
+             "scenario files, or names of the project's scenarios (office, hallway_loop, ...)");
   parser.Add("--seeds", &f.seeds, "sensor noise seeds, e.g. 1-6 or 2,5 (default: the scenario's)");
+  parser.Add("--world-seeds", &f.world_seeds,
+             "generated worlds: run each scenario (default random_indoor) in each of these worlds "
+             "(sim.world.generators[0].seed). Development: 1-999; held out: 100001-100999 "
+             "(docs/decisions/generated-worlds.md)");
+  parser.Add("--generated", &f.generated,
+             "generated worlds: the first N of the development range (--world-seeds 1-N)")
+      .Positive();
   parser.Add("--sigma", &f.sigma, "sensor noise in metres (default: the scenario's)");
   parser.Add("--laps", &f.laps, "times round a closed trajectory (default: the scenario's)")
       .Positive();
@@ -98,6 +106,12 @@ int Main(int argc, char** argv) {
       "the perpendicular from the sensor, and the angle between its normal and the true one");
   parser.AddFlag("--check", &f.check, "exit 1 unless every run meets the targets");
   if (auto code = parser.Parse(argc, argv)) return *code;
+  if (f.generated > 0 && f.world_seeds.empty()) f.world_seeds = "1-" + std::to_string(f.generated);
+  if (!f.world_seeds.empty() && f.scenarios.empty()) f.scenarios = {"random_indoor"};
+  if (f.scenarios.empty()) {
+    std::fprintf(stderr, "relplane-accuracy: give a scenario, or --generated N (see --help)\n");
+    return cli::kExitConfig;
+  }
 
   // Everything is checked before the first run: a typo fails now, not after minutes.
   std::vector<uint64_t> seeds = {0};
@@ -108,22 +122,29 @@ int Main(int argc, char** argv) {
   try {
     if (!f.baseline.empty()) baseline = ReadBaseline(f.baseline);
     if (!f.seeds.empty()) seeds = ParseSeeds(f.seeds);
+    std::vector<uint64_t> worlds = {0};  // 0: the scenario's own world
+    if (!f.world_seeds.empty()) worlds = ParseSeeds(f.world_seeds);
     if (f.sigma >= 0.0) base_overrides.push_back("sim.sensor.noise_sigma=" + std::to_string(f.sigma));
     if (f.laps > 0) base_overrides.push_back("sim.trajectory.laps=" + std::to_string(f.laps));
     for (const std::string& name : f.scenarios) {
       const std::string file = launch::ResolveScenarioFile(name, kScenariosDir);
-      for (uint64_t seed : seeds) {
-        RunSpec spec;
-        spec.file = file;
-        spec.overrides = base_overrides;
-        if (seed > 0) spec.overrides.push_back("sim.sensor.seed=" + std::to_string(seed));
-        spec.min_wall_length_m = f.min_wall_length_m;
-        spec.plane_errors = !f.planes_dir.empty();
-        specs.push_back(spec);
-        SweepRun run;
-        run.scenario = StemOf(file);
-        run.seed = seed;
-        runs.push_back(run);
+      for (uint64_t world : worlds) {
+        for (uint64_t seed : seeds) {
+          RunSpec spec;
+          spec.file = file;
+          spec.overrides = base_overrides;
+          if (world > 0) {
+            spec.overrides.push_back("sim.world.generators[0].seed=" + std::to_string(world));
+          }
+          if (seed > 0) spec.overrides.push_back("sim.sensor.seed=" + std::to_string(seed));
+          spec.min_wall_length_m = f.min_wall_length_m;
+          spec.plane_errors = !f.planes_dir.empty();
+          specs.push_back(spec);
+          SweepRun run;
+          run.scenario = StemOf(file) + (world > 0 ? "-w" + std::to_string(world) : "");
+          run.seed = seed;
+          runs.push_back(run);
+        }
       }
     }
     // Every run's options are read now, so a bad key or value is reported before any work.
@@ -204,6 +225,9 @@ int Main(int argc, char** argv) {
     ate_sum += s.ate_sum_m;
   }
   std::printf("%-24s %4d of %-2zu %9.3f m\n", "all", meeting, runs.size(), ate_sum);
+  if (!f.world_seeds.empty()) {
+    std::printf("\n%s", KindTable(SummariseByKind(runs, f.targets), f.targets, f.sigma).c_str());
+  }
   if (!f.baseline.empty()) {
     std::printf("\n%s", ComparisonText(CompareWithBaseline(baseline, runs), f.baseline).c_str());
   }

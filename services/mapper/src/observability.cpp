@@ -43,10 +43,9 @@ Observability AnalyseInformation(const Eigen::Matrix3d& information,
     const Eigen::Vector3d v = scale.asDiagonal() * out.eigenvectors.col(k);
     out.unconstrained.push_back(v.normalized());
   }
-  const Eigen::Vector3d prior(
-      1.0 / (options.prior_sigma_position * options.prior_sigma_position),
-      1.0 / (options.prior_sigma_position * options.prior_sigma_position),
-      1.0 / (options.prior_sigma_yaw * options.prior_sigma_yaw));
+  const Eigen::Vector3d prior(1.0 / (options.prior_sigma_position * options.prior_sigma_position),
+                              1.0 / (options.prior_sigma_position * options.prior_sigma_position),
+                              1.0 / (options.prior_sigma_yaw * options.prior_sigma_yaw));
   const Eigen::Matrix3d total = out.information + Eigen::Matrix3d(prior.asDiagonal());
   out.covariance = total.ldlt().solve(Eigen::Matrix3d::Identity());
   out.covariance = 0.5 * (out.covariance + out.covariance.transpose());

@@ -6,8 +6,8 @@ namespace relplane::mapper {
 
 Observability ObservabilityOf(const PoseEstimate& estimate, const ObservabilityOptions& options) {
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
-  const bool solved = estimate.status == PoseStatus::kTracking ||
-                      estimate.status == PoseStatus::kMotionModel;
+  const bool solved =
+      estimate.status == PoseStatus::kTracking || estimate.status == PoseStatus::kMotionModel;
   if (solved) {
     const double unit = LearnedFrustum::kEdgeNoise;
     information.topLeftCorner<2, 2>() = estimate.position_information / (unit * unit);

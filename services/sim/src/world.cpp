@@ -21,6 +21,11 @@ struct GeneratorVisitor {
   void operator()(const StraightHallwayParams& p) const { AddStraightHallway(p, height, out); }
   void operator()(const HallwayLoopParams& p) const { AddHallwayLoop(p, height, out); }
   void operator()(const OfficeParams& p) const { AddOffice(p, height, out); }
+  void operator()(const RandomIndoorParams& p) const {
+    for (const auto& [from, to] : MakeRandomIndoor(p).walls) {
+      out->push_back(Rect::Wall(from, to, 0.0, height));
+    }
+  }
 };
 
 bool IsWall(const Rect& r) { return std::abs(r.Normal().z()) < 0.1; }

@@ -17,6 +17,7 @@
 #include "overrides.hpp"
 #include "relplane/common/options.hpp"
 #include "relplane/mapper/mapper.hpp"
+#include "relplane/mapper/pose_covariance.hpp"
 #include "relplane/segmenter/segmenter.hpp"
 #include "relplane/sim/simulation.hpp"
 
@@ -94,6 +95,7 @@ RunResult RunScenario(const RunSpec& spec) {
   segmenter::Segmenter segmenter(sections.segmenter.segmenter);
   mapper::Mapper mapper(sections.mapper);
   RunResult r;
+  r.kind = ClassifyWorld(simulation);
   std::vector<eval::PoseSample> estimate, truth;
   const std::vector<sim::TruePlane> true_planes = simulation.TruePlanes();
   for (int64_t k = 0; k < simulation.NumIterations(); ++k) {
@@ -138,6 +140,8 @@ RunResult RunScenario(const RunSpec& spec) {
     estimate.push_back(
         Sample(k, {pose.pose.x, pose.pose.y, mapper.Height()},
                Eigen::Quaterniond(Eigen::AngleAxisd(pose.pose.yaw, Eigen::Vector3d::UnitZ()))));
+    estimate.back().status = static_cast<int>(pose.status) + 1;  // pose_t's status numbering
+    estimate.back().covariance = mapper::ObservabilityOf(pose).covariance;
   }
 
   eval::MapSnapshot world, map;

@@ -110,6 +110,56 @@ std::vector<ScenarioSummary> Summarise(const std::vector<SweepRun>& runs) {
   return out;
 }
 
+std::vector<KindSummary> SummariseByKind(const std::vector<SweepRun>& runs,
+                                         const Targets& targets) {
+  std::vector<KindSummary> out;
+  std::vector<std::vector<double>> ates;
+  for (const SweepRun& run : runs) {
+    const std::string kind = run.result.kind.Label();
+    auto it = std::find_if(out.begin(), out.end(),
+                           [&](const KindSummary& s) { return s.kind == kind; });
+    if (it == out.end()) {
+      out.push_back({});
+      ates.emplace_back();
+      it = out.end() - 1;
+      it->kind = kind;
+    }
+    const double ate = run.result.trajectory.ate_rmse_m;
+    ++it->worlds;
+    it->within_ate += ate <= targets.ate_rmse_m ? 1 : 0;
+    it->with_duplicates += run.result.map.duplicates > 0 ? 1 : 0;
+    it->ate_worst_m = std::max(it->ate_worst_m, ate);
+    const double consistency = run.result.trajectory.consistency.position_within_3sigma;
+    it->consistency += std::isfinite(consistency) ? consistency : 0.0;
+    ates[static_cast<size_t>(it - out.begin())].push_back(ate);
+  }
+  for (size_t k = 0; k < out.size(); ++k) {
+    std::vector<double>& a = ates[k];
+    std::sort(a.begin(), a.end());
+    out[k].ate_median_m = a.size() % 2 == 1 ? a[a.size() / 2]
+                                            : 0.5 * (a[a.size() / 2 - 1] + a[a.size() / 2]);
+    out[k].consistency /= static_cast<double>(out[k].worlds);
+  }
+  return out;
+}
+
+std::string KindTable(const std::vector<KindSummary>& kinds, const Targets& targets, double sigma) {
+  // Markdown, so the table goes into docs/results as printed.
+  std::string out = "| world kind | noise | worlds | ATE <= " + Format("%g m", targets.ate_rmse_m) +
+                    " | median ATE | worst ATE | with duplicates | frames within 3 sigma |\n"
+                    "|---|---|---|---|---|---|---|---|\n";
+  const std::string noise = sigma >= 0.0 ? Format("%g m", sigma) : std::string("scenario's");
+  for (const KindSummary& k : kinds) {
+    char line[256];
+    std::snprintf(line, sizeof line, "| %s | %s | %d | %d (%.0f %%) | %.3f m | %.3f m | %d | %.2f |\n",
+                  k.kind.c_str(), noise.c_str(), k.worlds, k.within_ate,
+                  100.0 * k.within_ate / std::max(k.worlds, 1), k.ate_median_m, k.ate_worst_m,
+                  k.with_duplicates, k.consistency);
+    out += line;
+  }
+  return out;
+}
+
 std::string RunLine(const SweepRun& run) {
   const RunResult& r = run.result;
   std::string line = run.scenario + " seed " +
@@ -166,6 +216,9 @@ std::string SweepJson(const std::vector<SweepRun>& runs, const Targets& targets,
     w.Field("frames", r.frames).Field("lost_frames", r.lost_frames);
     w.Field("motion_model_frames", r.motion_model_frames);
     w.Field("rejected_frames", r.rejected_frames);
+    w.Field("world_kind", r.kind.Label()).Field("unobservable_frames", r.kind.unobservable_frames);
+    w.Field("longest_unobservable_s", r.kind.longest_stretch_s);
+    w.Field("position_within_3sigma", r.trajectory.consistency.position_within_3sigma);
     w.Field("ate_rmse_m", r.trajectory.ate_rmse_m).Field("ate_max_m", r.trajectory.ate_max_m);
     w.Field("ate_aligned_rmse_m", r.trajectory.ate_aligned_rmse_m);
     w.Field("yaw_rmse_deg", r.trajectory.yaw_rmse_deg);

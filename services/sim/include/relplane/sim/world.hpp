@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "relplane/sim/generators.hpp"
+#include "relplane/sim/random_indoor.hpp"
 
 namespace relplane::sim {
 
@@ -38,7 +39,8 @@ struct WallSpec {
   double height = -1.0;
 };
 
-using GeneratorSpec = std::variant<StraightHallwayParams, HallwayLoopParams, OfficeParams>;
+using GeneratorSpec =
+    std::variant<StraightHallwayParams, HallwayLoopParams, OfficeParams, RandomIndoorParams>;
 
 struct WorldOptions {
   double height = 2.5;  // wall height and ceiling height, metres

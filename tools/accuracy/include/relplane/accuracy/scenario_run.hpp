@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "relplane/accuracy/plane_errors.hpp"
+#include "relplane/accuracy/world_kind.hpp"
 #include "relplane/eval/map_metrics.hpp"
 #include "relplane/eval/trajectory_metrics.hpp"
 
@@ -49,6 +50,8 @@ struct RunResult {
   // Where each true wall of map.walls stands, seen from above (same order): which wall a run's
   // worst error is on.
   std::vector<geometry::Segment2> wall_segments;
+  // Whether the walls in view fix every frame's pose (world_kind.hpp).
+  WorldKind kind;
 };
 
 // Reads every section `spec` gives the services, as RunScenario does, and runs nothing. Throws as RunScenario.

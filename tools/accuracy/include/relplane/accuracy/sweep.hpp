@@ -49,6 +49,24 @@ struct ScenarioSummary {
 // Per scenario, in the order scenarios first appear in `runs`.
 std::vector<ScenarioSummary> Summarise(const std::vector<SweepRun>& runs);
 
+// The runs of one world kind together (world_kind.hpp): generated worlds are judged per kind.
+struct KindSummary {
+  std::string kind;
+  int worlds = 0;
+  int within_ate = 0;  // runs with ATE RMSE within the target
+  int with_duplicates = 0;
+  double ate_median_m = 0.0;
+  double ate_worst_m = 0.0;
+  double consistency = 0.0;  // mean share of frames within 3 sigma (x-y) of POSE's covariance
+};
+
+std::vector<KindSummary> SummariseByKind(const std::vector<SweepRun>& runs,
+                                         const Targets& targets);
+
+// The per-kind table as text, one line per kind, `sigma` in its title (m; negative: the
+// scenarios' own).
+std::string KindTable(const std::vector<KindSummary>& kinds, const Targets& targets, double sigma);
+
 // One line for a run: "office seed 3: ATE 0.013 m, 0 duplicates, ... meets the targets".
 std::string RunLine(const SweepRun& run);
 
