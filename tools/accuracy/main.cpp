@@ -1,7 +1,7 @@
 // relplane-accuracy: scenarios through simulator, EM segmenter and mapper in one process, over
-// a list of sensor-noise seeds, each run held to issue 4's targets (README "Mapper", the accuracy
-// table). No bus and no clock: a run gives the same numbers on any machine, so a change to the
-// mapper or the segmenter is judged on many seeds in a few minutes.
+// a list of sensor-noise seeds, each run held to issue 4's targets (docs/results.md). No bus and
+// no clock: a run gives the same numbers on any machine, so a change to the mapper or the
+// segmenter is judged on many seeds in a few minutes.
 
 #include <algorithm>
 #include <atomic>

@@ -14,9 +14,9 @@ namespace {
 constexpr int kSlices = 8;
 // Each candidate is scored on at most this many of the piece's points (every k-th).
 constexpr size_t kScorePoints = 1000;
-// rad: the line may turn from the start by at most this much. A lean towards a crossing face
-// reached 7.7 degrees (loop_other_sensor at 1 cm); a piece whose most points lie on a line
-// turned further holds two surfaces, the larger not the one it was fitted to.
+// rad: the line may turn from the start by at most this much, more than a lean towards a
+// crossing face gives a piece; a piece whose most points lie on a line turned further holds two
+// surfaces, the larger not the one it was fitted to.
 constexpr double kMaxTurn = 0.2;
 // m: the piece's points must spread at least this far along the wall (5th to 95th percentile)
 // for a line through them to be told from their noise: a sliver's is not.

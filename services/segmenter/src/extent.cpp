@@ -270,9 +270,8 @@ void EstimateWallEnds(float ray_step, float share, float max_spacing, float rang
 }
 
 // A piece whose RMS is over this many times the noise expected along its normal leans between
-// two surfaces (DominantLineFit) ... At 2 the mapper's seeded runs did a little worse (425 of
-// 432 against 428, before the refits' trim was capped; services/mapper/NOTES.md): pieces 2-3 times
-// over their noise are mostly small and barely turned by the fit.
+// two surfaces (DominantLineFit) ... Pieces 2-3 times over their noise are mostly small and
+// barely turned by the fit (docs/decisions/segmenter.md).
 constexpr double kLeaningRms = 3.0;
 // ... and takes the line most of its points lie on if that line holds at least this share of them.
 constexpr double kMinLineShare = 0.5;

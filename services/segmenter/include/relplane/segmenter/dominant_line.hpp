@@ -12,9 +12,9 @@ namespace relplane::segmenter {
 
 // Why: a pilaster's 0.4 m front, seen at a grazing angle, is three or four of the sensor's
 // columns of samples; EM gives its piece one or two columns of the square-on side next to the
-// corner as well, 2-5 cm behind it. The least-squares fit leans between the two (up to 7
-// degrees at 1 cm noise on loop_other_sensor, where the mapper made such a face a second wall),
-// its RMS grows to several times the noise expected along it, and a trim at that RMS
+// corner as well, 2-5 cm behind it. The least-squares fit leans between the two (several
+// degrees at 1 cm noise, enough for the mapper to take the face for a second wall), its RMS
+// grows to several times the noise expected along it, and a trim at that RMS
 // (IterateTrimmedFit) keeps them all. Trimming down from there drops the face's own samples at
 // the corner as readily as the side's, but seen from above the face's samples lie on one line
 // and the side's do not.

@@ -1,5 +1,6 @@
 #pragma once
-// The EM plane segmenter: one cloud in, its planes out (DESIGN.md: relplane-segmenter).
+// The EM plane segmenter: one cloud in, its planes out (DESIGN.md: relplane-segmenter), the
+// paper's input stage (§I, §III: 2½D planes from a 3D point field by EM, after Thrun et al.).
 
 #include <cstdint>
 #include <vector>
@@ -28,7 +29,7 @@ struct Result {
 };
 
 // Segments a stream of clouds. Each frame is seeded with the previous frame's planes (the
-// stream is continuous), so a steady scene needs fewer rounds and no new proposals.
+// paper's input is continuous, §IV), so a steady scene needs fewer rounds and no new proposals.
 class Segmenter {
  public:
   explicit Segmenter(Options options = {});

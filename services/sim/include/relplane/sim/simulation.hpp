@@ -1,5 +1,6 @@
 #pragma once
-// The whole simulation of one scenario: world, trajectory and sensor, stepped by iteration.
+// The whole simulation of one scenario: world, trajectory and sensor, stepped by iteration, as
+// the paper's tests do (§III: a simulated 3D point field seen by a moving sensor, Figs. 5-8).
 // Iteration k is simulated time k / rate_hz; nothing here reads a clock.
 
 #include <Eigen/Geometry>

@@ -1,7 +1,7 @@
 #pragma once
 // A sweep written earlier with --json, read back as the baseline a new sweep is compared with:
 // each change to the mapper or the segmenter is judged by how the same seeds fare before and
-// after it (services/mapper/NOTES.md), run by run, not by the totals alone.
+// after it, run by run, not by the totals alone.
 
 #include <cstdint>
 #include <string>

@@ -1,6 +1,7 @@
 #pragma once
 // What the evaluation sees of a run: decoded poses, maps and service reports. Plain structs, no
-// LCM, so the logger service and the offline tool feed one recorder (tools/eval/shell/convert).
+// LCM, so the logger service and the offline tool feed one recorder
+// (services/logger/shell/convert).
 
 #include <Eigen/Geometry>
 #include <cstdint>

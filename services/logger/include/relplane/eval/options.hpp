@@ -1,6 +1,7 @@
 #pragma once
 // Options of the evaluation (scenario section `logger`) and the expected outcome (top-level
-// `expect:`). Plain structs with defaults; tools/eval/shell/options_yaml fills them from YAML.
+// `expect:`). Plain structs with defaults; services/logger/shell/options_yaml fills them from
+// YAML.
 
 #include <string>
 #include <vector>
