@@ -198,11 +198,16 @@ TEST(SimRecording, ReplayFeedsTheRecordedSimulatorChannelsToFreshServices) {
 
   const std::string bin = dir.Path() + "/bin";
   ASSERT_EQ(mkdir(bin.c_str(), 0755), 0);
-  for (const char* name : {"segmenter", "mapper", "logger"}) {
-    WriteFakeService(bin, name,
-                     "echo \"$@\" > " + dir.Path() + "/" + name + ".args\nexec sleep 60");
-  }
   const std::string replay = dir.Path() + "/replay";
+  for (const std::string name : {"segmenter", "mapper", "logger"}) {
+    // The fake logger scores nothing: its metrics.json expects nothing (no verdict, exit 0).
+    const std::string metrics =
+        name == "logger" ? "echo '{\"schema\": \"relplane-metrics/1\", \"expect\": []}' > " +
+                               replay + "/metrics.json\n"
+                         : "";
+    WriteFakeService(bin, name,
+                     metrics + "echo \"$@\" > " + dir.Path() + "/" + name + ".args\nexec sleep 60");
+  }
   ASSERT_EQ(RunLauncher({"--replay", live + "/bus.lcmlog", "--bin-dir", bin, "--out", replay,
                          "--speed", "3", "--lcm-url", TestBusUrl(47117)},
                         120, &output),

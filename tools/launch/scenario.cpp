@@ -96,12 +96,11 @@ std::string ClosestKey(const std::string& key, const std::vector<std::string>& c
 }
 
 std::string ResolveScenarioFile(const std::string& name, const std::string& scenarios_dir) {
-  if (std::ifstream(name).good()) return name;
   const bool bare = name.find('/') == std::string::npos && name.find('.') == std::string::npos;
-  if (bare) {
-    const std::string own = scenarios_dir + "/" + name + ".yaml";
-    if (std::ifstream(own).good()) return own;
-  }
+  // A path is the caller's to open (and to report missing); only bare names are looked up.
+  if (!bare || std::ifstream(name).good()) return name;
+  const std::string own = scenarios_dir + "/" + name + ".yaml";
+  if (std::ifstream(own).good()) return own;
   throw config::ConfigError(
       name + ": no such scenario file (the project's: " + KnownScenarios(scenarios_dir) + ")");
 }

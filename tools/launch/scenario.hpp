@@ -44,8 +44,9 @@ const std::vector<std::string>& TopLevelKeys();
 // The candidate closest to `key` when it is a likely typo of it (edit distance <= 2), else "".
 std::string ClosestKey(const std::string& key, const std::vector<std::string>& candidates);
 
-// `name` as given when it is a file; a bare name (no '/', no '.') is one of the project's,
-// `scenarios_dir`/NAME.yaml. Throws config::ConfigError naming the project's scenarios otherwise.
+// A bare name (no '/', no '.') that is no file is one of the project's scenarios,
+// `scenarios_dir`/NAME.yaml, or a config::ConfigError listing them; anything else is returned
+// as given.
 std::string ResolveScenarioFile(const std::string& name, const std::string& scenarios_dir);
 
 // Loads a scenario file and checks its top level: a mapping whose keys are TopLevelKeys() and
