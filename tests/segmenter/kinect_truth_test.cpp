@@ -182,8 +182,8 @@ TEST(KinectTruth, LabelledPlanesFoundNoneSplit) {
   Options preset;
   ASSERT_TRUE(preset.sensor.SetPreset("kinect_v1"));
   Options yaml;  // services/segmenter/kinect.yaml
-  yaml.sigma_max = 0.007f;
-  yaml.range_noise = 0.003f;
+  yaml.noise.sigma_max = 0.007f;
+  yaml.noise.range_noise = 0.003f;
   int found_preset = 0, found_yaml = 0, found_defaults = 0, labels = 0;
   for (const char* stamp : kStamps) {
     SCOPED_TRACE(stamp);

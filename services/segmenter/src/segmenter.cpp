@@ -146,9 +146,9 @@ namespace {
 // With a known camera a plane's own noise is what remains on top of the camera's.
 Options WithSensor(Options options) {
   if (options.sensor.Known()) {
-    options.sigma_max = std::max(options.sigma_min,
-                                 std::min(options.sigma_max, options.sensor.surface_sigma_max));
-    options.sigma_initial = std::min(options.sigma_initial, options.sigma_max);
+    options.noise.sigma_max = std::max(options.noise.sigma_min,
+                                 std::min(options.noise.sigma_max, options.sensor.surface_sigma_max));
+    options.noise.sigma_initial = std::min(options.noise.sigma_initial, options.noise.sigma_max);
   }
   return options;
 }
