@@ -17,7 +17,7 @@ namespace {
 using accuracy::RunResult;
 
 // The scenario as its YAML has it; a sigma >= 0 and a seed > 0 replace the sensor's.
-// `min_wall_length`: true walls shorter than this are not scored (the seed tables in services/mapper/NOTES.md leave
+// `min_wall_length`: true walls shorter than this are not scored (the accuracy tables in docs/results.md leave
 // out the doors' 0.30 m jambs, at the evaluation's limit, with 0.31).
 RunResult RunScenario(const std::string& name, double sigma = -1.0, uint64_t seed = 0,
                       double min_wall_length = 0.3) {
@@ -74,7 +74,7 @@ TEST(PipelineAccuracy, OfficeOtherSensorNoisySeed4) {
 // while the sensor drove on, the first group was placed 0.3 m behind and 8 walls went unmatched
 // (ATE 0.37 m). A position held still now takes an end up to a step further ahead for each
 // iteration it was held (§II.E). The run still misses the targets (ATE 0.12 m: a segmenter fit
-// running 0.26 m past a wall's end at iteration 20, see services/mapper/NOTES.md); this holds what was fixed.
+// running 0.26 m past a wall's end at iteration 20, see docs/decisions/mapper.md); this holds what was fixed.
 TEST(PipelineAccuracy, OutAndBackNoisySeed11StartKeepsUpWithTheSensor) {
   const RunResult r = RunScenario("hallway_out_and_back", 0.01, 11, 0.31);
   // Frames 6-19 (the first metre once the bad end is past): 0.24 m behind on average before.
