@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "relplane/mapper/observation.hpp"
+#include "relplane/mapper/types.hpp"
 
 namespace relplane::mapper {
 

@@ -61,8 +61,8 @@ void MapperService::OnPlanes(const plane_set_t& msg) {
   last_utime_ = msg.utime;
   last_seq_ = msg.seq;
   if (map_pending_ && MapDue(msg.utime)) PublishMap();
-  stats_.SetDetail(fmt::format("planes {} groups {}", mapper_.State().global.size(),
-                               mapper_.State().groups.size()));
+  stats_.SetDetail(fmt::format("planes {} groups {}", mapper_.Stats().map_planes,
+                               mapper_.Stats().groups));
 }
 
 bool MapperService::MapDue(int64_t utime) const {
@@ -104,7 +104,7 @@ bool MapperService::Resume(const std::string& path) {
         "iterations/s); {} planes, {} groups",
         path, journal.records.size(), last_seq_, seconds,
         static_cast<double>(journal.records.size()) / std::max(seconds, 1e-9),
-        mapper_.State().global.size(), mapper_.State().groups.size());
+        mapper_.Stats().map_planes, mapper_.Stats().groups);
   }
   if (!journal_.Open(path, journal.valid_bytes, &error)) {
     spdlog::error("{}", error);

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "ideal_segmenter.hpp"
-#include "relplane/mapper/backtracking.hpp"
-#include "relplane/mapper/relative_map.hpp"
+#include "plane_store/backtracking.hpp"
+#include "global_map/relative_map.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -66,8 +66,8 @@ class WallKnownByItsLine : public ::testing::Test {
     plane.first_seen = SeenFrom(first, geometry::Pose2{});
     plane.Add(last);
     state_.planes.emplace(kId, std::move(plane));
-    state_.poses[0] = geometry::Pose2{};
-    state_.poses[80] = geometry::Pose2{};
+    state_.trajectory.poses[0] = geometry::Pose2{};
+    state_.trajectory.poses[80] = geometry::Pose2{};
     Placement placed;
     placed.alpha = first.Alpha();
     placed.known = Known::kLine;

@@ -1,6 +1,6 @@
 // The grid the published map's clean-up and corner snapping find nearby walls with: a query
 // returns every box that may overlap it, each once, in increasing order.
-#include "../../services/mapper/src/box_grid.hpp"
+#include "published_map/box_grid.hpp"
 
 #include <gtest/gtest.h>
 

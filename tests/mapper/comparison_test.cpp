@@ -1,6 +1,6 @@
 // §II.C pairwise comparison on hand-built observation sequences, checked against the geometry
 // the sequences were built from.
-#include "relplane/mapper/comparison.hpp"
+#include "comparison/comparison.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,9 +8,9 @@
 
 #include "ideal_segmenter.hpp"
 #include "relplane/common/geometry.hpp"
-#include "relplane/mapper/localisation.hpp"
-#include "relplane/mapper/observation.hpp"
-#include "relplane/mapper/rltplane.hpp"
+#include "localisation/pose_solver.hpp"
+#include "plane_store/observation.hpp"
+#include "plane_store/rltplane.hpp"
 
 namespace relplane::mapper {
 namespace {

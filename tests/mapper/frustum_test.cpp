@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "relplane/mapper/localisation.hpp"
+#include "localisation/pose_solver.hpp"
 
 namespace relplane::mapper {
 namespace {

@@ -2,7 +2,7 @@
 // before it, also when it re-places one of them itself because it knows more about it, and
 // from its members' first sightings when it is the first group. Where the links leave its
 // position open, its prior places it (group_prior_test.cpp).
-#include "relplane/mapper/global_map.hpp"
+#include "global_map/global_map.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include "group_fixtures.hpp"
 #include "ideal_segmenter.hpp"
 #include "relplane/common/geometry.hpp"
-#include "relplane/mapper/comparison.hpp"
+#include "comparison/comparison.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -38,8 +38,8 @@ TEST(GlobalMap, AGroupRePlacedKeepsTheLinkItTookOverFromAnEarlierGroup) {
   ASSERT_NEAR(b.Alpha(), 0.0, 1e-9);
   MapperState state;
   state.first_iteration = 0;
-  state.poses[0] = {0.0, 0.0, 0.0};
-  state.fixed_poses.insert(0);
+  state.trajectory.poses[0] = {0.0, 0.0, 0.0};
+  state.trajectory.fixed.insert(0);
   state.planes.emplace(0, RltPlane(0, a, 0.05, 1000));
   state.planes.emplace(1, RltPlane(1, b, 0.05, 1000));
   state.Plane(0)->groups = {0, 1};
@@ -80,8 +80,8 @@ TEST(GlobalMap, AShortPieceMeasuredFarAlongItsLineDoesNotMoveItsGroupAlongTheHal
   MapperState state;
   state.first_iteration = 0;
   for (int64_t k = 0; k < 3; ++k) {
-    state.poses[k] = {0.0, 0.0, 0.0};
-    state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {0.0, 0.0, 0.0};
+    state.trajectory.fixed.insert(k);
     const Observation wall = *MakeObservation(testing::WallSeen({1, -1.25}, {5, -1.25}), k, 0.3);
     const Observation piece =
         *MakeObservation(testing::WallSeen(middle - 0.15 * t, middle + 0.15 * t), k, 0.3);
@@ -138,8 +138,8 @@ TEST(GlobalMap, AnEdgeTieFarFromTheGroupsPriorIsLeftOutWhileAnotherAgrees) {
   state.first_iteration = 0;
   const geometry::Pose2 from{7.0, 0.0, 0.0};
   for (int64_t k = 0; k < 3; ++k) {
-    state.poses[k] = from;
-    state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = from;
+    state.trajectory.fixed.insert(k);
     const Observation seen[] = {testing::SeenAlongX({9, -1}, {11, -1}, 7.0, k),
                                 testing::SeenAlongX({12, -1}, {15, -1}, 7.0, k),
                                 testing::SeenAlongX({11, -1.3}, {11, -1}, 7.0, k)};
@@ -201,15 +201,15 @@ TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {
   const auto seen = SeenAlongX;
   MapperState state;
   state.first_iteration = 0;
-  state.poses[0] = {0.0, 0.0, 0.0};
-  state.fixed_poses.insert(0);
+  state.trajectory.poses[0] = {0.0, 0.0, 0.0};
+  state.trajectory.fixed.insert(0);
   RltPlane wall(0, seen({3, 2}, {3, -2}, 0.0, 0), 0.05, 1000);
   ASSERT_NEAR(wall.Latest().edge[1].y(), -2.0, 1e-9);
-  wall.first_seen = SeenFrom(wall.Latest(), state.poses[0]);
+  wall.first_seen = SeenFrom(wall.Latest(), state.trajectory.poses[0]);
   for (int64_t k = 1; k <= 5; ++k) {
     wall.Add(seen({3, 1}, {3, 0.5}, 1.0, k));
-    state.poses[k] = {1.0, 0.0, 0.0};
-    state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {1.0, 0.0, 0.0};
+    state.trajectory.fixed.insert(k);
   }
   ASSERT_NEAR(wall.Latest().edge[1].y(), 0.5, 1e-9);
   wall.groups = {0};
@@ -233,8 +233,8 @@ TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingSampledCoarsely
   const auto seen = SeenAlongX;
   MapperState state;
   state.first_iteration = 0;
-  state.poses[0] = {0.0, 0.0, 0.0};
-  state.fixed_poses.insert(0);
+  state.trajectory.poses[0] = {0.0, 0.0, 0.0};
+  state.trajectory.fixed.insert(0);
   state.angular_step = 0.5625 * M_PI / 180.0;  // a 90 degree view over 160 columns
   RltPlane a(0, seen({1, -1}, {4.9, -1}, 0.0, 0), 0.05, 1000);
   RltPlane l(1, seen({6, 1}, {1, 1}, 0.0, 0), 0.05, 1000);
@@ -242,11 +242,11 @@ TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingSampledCoarsely
   for (int64_t k = 1; k <= 5; ++k) {
     a.Add(seen({1, -1}, {5, -1}, 3.5, k));
     l.Add(seen({6, 1}, {1, 1}, 3.5, k));
-    state.poses[k] = {3.5, 0.0, 0.0};
-    state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {3.5, 0.0, 0.0};
+    state.trajectory.fixed.insert(k);
   }
   for (RltPlane* plane : {&a, &l}) {
-    plane->first_seen = SeenFrom(plane->Observations().front(), state.poses[0]);
+    plane->first_seen = SeenFrom(plane->Observations().front(), state.trajectory.poses[0]);
     plane->groups = {0};
   }
   const double a_alpha = a.first_seen.alpha, l_alpha = l.first_seen.alpha;
@@ -277,8 +277,8 @@ FirstGroupWithAPieceSeenOff PieceSeenOffFromTheStart(Known b_known) {
   FirstGroupWithAPieceSeenOff scene;
   MapperState& state = scene.state;
   state.first_iteration = 0;
-  state.poses[0] = {0.0, 0.0, 0.0};
-  state.fixed_poses.insert(0);
+  state.trajectory.poses[0] = {0.0, 0.0, 0.0};
+  state.trajectory.fixed.insert(0);
   const auto seen = [](const Vector2d& a, const Vector2d& b) {
     return *MakeObservation(testing::WallSeen(a, b), 0, 0.3);
   };
@@ -291,7 +291,7 @@ FirstGroupWithAPieceSeenOff PieceSeenOffFromTheStart(Known b_known) {
   RltPlane wall(0, a, 0.05, 1000);
   RltPlane piece(1, seen(b_middle - 0.75 * b_along, b_middle + 0.75 * b_along), 0.05, 1000);
   for (RltPlane* plane : {&wall, &piece}) {
-    plane->first_seen = SeenFrom(plane->Latest(), state.poses[0]);
+    plane->first_seen = SeenFrom(plane->Latest(), state.trajectory.poses[0]);
     plane->groups = {0};
   }
   state.planes.emplace(0, std::move(wall));
@@ -364,8 +364,8 @@ SideSeenEdgeOn SideSeenEdgeOnLast(double b_off) {
   MapperState& state = scene.state;
   state.first_iteration = 0;
   for (int64_t k = 0; k <= 5; ++k) {
-    state.poses[k] = {0.0, 0.0, 0.0};
-    state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {0.0, 0.0, 0.0};
+    state.trajectory.fixed.insert(k);
   }
   const auto fitted = [](Observation obs, double rms, int support) {
     obs.rms = rms, obs.support = support;
@@ -448,8 +448,8 @@ ThroughADoor SeenThroughADoor() {
   MapperState& state = scene.state;
   state.first_iteration = 0;
   for (int64_t k = 0; k <= scene.last; ++k) {
-    state.poses[k] = {0.0, 0.0, 0.0};
-    state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {0.0, 0.0, 0.0};
+    state.trajectory.fixed.insert(k);
   }
   const auto seen = [](const Vector2d& a, const Vector2d& b, int64_t k) {
     return *MakeObservation(testing::WallSeen(a, b), k, 0.3);

@@ -7,8 +7,8 @@
 #include <map>
 
 #include "ideal_segmenter.hpp"
-#include "relplane/mapper/observation.hpp"
-#include "relplane/mapper/state.hpp"
+#include "plane_store/observation.hpp"
+#include "state.hpp"
 
 namespace relplane::mapper::testing {
 

@@ -1,7 +1,7 @@
 // §II.D a group's prior: where the links to the map leave a group's position open, a sighting
 // made while the walls fixed the pose (§II.E: the motion model carries a position the walls do
 // not give), from a wall end that stood still (§II.C), and across the members' lines as seen.
-#include "relplane/mapper/global_map.hpp"
+#include "global_map/global_map.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include "group_fixtures.hpp"
 #include "ideal_segmenter.hpp"
 #include "relplane/common/geometry.hpp"
-#include "relplane/mapper/comparison.hpp"
+#include "comparison/comparison.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -40,8 +40,8 @@ MapperState DrivingAlongX(int64_t last, int64_t last_fixed) {
   MapperState state;
   state.first_iteration = 0;
   for (int64_t k = 0; k <= last; ++k) {
-    state.poses[k] = {0.1 * static_cast<double>(k), 0.0, 0.0};
-    if (k <= last_fixed) state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {0.1 * static_cast<double>(k), 0.0, 0.0};
+    if (k <= last_fixed) state.trajectory.fixed.insert(k);
   }
   return state;
 }
@@ -122,8 +122,8 @@ TEST(GroupPrior, AGroupKnowingItsBasisByItsLineIsPlacedFromAPoseTheWallsFixed) {
       wall->Add(w);
       side->Add(s);
     }
-    state.poses[k] = {k <= 5 ? 0.0 : -0.02, 0.0, truth.yaw};
-    if (k <= 5) state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {k <= 5 ? 0.0 : -0.02, 0.0, truth.yaw};
+    if (k <= 5) state.trajectory.fixed.insert(k);
   }
   wall->groups = {1};
   side->groups = {0, 1};
@@ -157,8 +157,8 @@ TEST(GroupPrior, APriorFromSeveralWallEndsAveragesTheirSightings) {
   MapperState state;
   state.first_iteration = 0;
   for (int64_t k = 0; k <= 5; ++k) {
-    state.poses[k] = {0.0, 0.0, 0.0};
-    state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {0.0, 0.0, 0.0};
+    state.trajectory.fixed.insert(k);
   }
   state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
   state.planes.emplace(1, RltPlane(1, left, 0.05, 1000));
@@ -182,8 +182,8 @@ TEST(GroupPrior, AWallEndThatMovedSinceTheSightingBeforeDoesNotSetThePrior) {
   MapperState state;
   state.first_iteration = 0;
   for (int64_t k = 0; k <= 5; ++k) {
-    state.poses[k] = {0.1 * static_cast<double>(k), 0.0, 0.0};
-    state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {0.1 * static_cast<double>(k), 0.0, 0.0};
+    state.trajectory.fixed.insert(k);
   }
   RltPlane left(1, seen({-1, 1}, {3, 1}, 0.4, 4), 0.05, 1000);
   left.Add(seen({-1, 1}, {3, 1}, 0.5, 5));
@@ -206,8 +206,8 @@ TEST(GroupPrior, AWallEndThatCreptAlongWithTheSensorDoesNotSetThePrior) {
   RltPlane right(2, seen({-1, -1}, {2, -1}, 0.0, 0), 0.05, 1000);
   for (int64_t k = 0; k <= 9; ++k) {
     const double x = 0.1 * static_cast<double>(k);
-    state.poses[k] = {x, 0.0, 0.0};
-    state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {x, 0.0, 0.0};
+    state.trajectory.fixed.insert(k);
     if (k == 0) continue;
     left.Add(seen({-1, 1}, {3, 1}, x, k));
     right.Add(seen({-1, -1}, {2.0 + 0.045 * static_cast<double>(k), -1}, x, k));
@@ -331,8 +331,8 @@ TEST(GroupPrior, AGroupMadeWhileTheMotionModelCarriedThePoseIsPlacedFromTheEndsS
   // the hallway, 4.6 cm along).
   MapperState state = DrivingAlongX(9, 9);
   for (int64_t k = 4; k <= 6; ++k) {
-    state.poses[k] = {0.3, 0.0, 0.0};
-    state.fixed_poses.erase(k);
+    state.trajectory.poses[k] = {0.3, 0.0, 0.0};
+    state.trajectory.fixed.erase(k);
   }
   ExpectSidesSeenSincePlacedAtTheirEnds(&state, 4, 3.0, false, 5, 9, 6);
 }

@@ -12,7 +12,10 @@
 #include <vector>
 
 #include "relplane/common/geometry.hpp"
+#include "localisation/pose_solver.hpp"
+#include "plane_store/observation.hpp"
 #include "relplane/mapper/mapper.hpp"
+#include "state.hpp"
 
 namespace relplane::mapper::testing {
 

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "relplane/mapper/localisation.hpp"
+#include "localisation/pose_solver.hpp"
 
 namespace relplane::mapper {
 namespace {

@@ -1,7 +1,7 @@
 // §II.D end, on the published map: a wall seen as a second rltplane lying inside another on the
 // same line, or sharing most of itself with it, is shown once; what "the same line" allows
 // depends on how well the piece's orientation is known, which is by its length.
-#include "relplane/mapper/map_cleanup.hpp"
+#include "published_map/map_cleanup.hpp"
 
 #include <gtest/gtest.h>
 

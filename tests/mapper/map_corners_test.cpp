@@ -1,6 +1,6 @@
 // §II.D end, on the published map: a wall's end is drawn where it meets the crossing wall's
 // line, since its last sample lies up to a ray spacing short of the corner.
-#include "relplane/mapper/map_corners.hpp"
+#include "published_map/map_corners.hpp"
 
 #include <gtest/gtest.h>
 

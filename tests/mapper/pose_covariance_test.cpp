@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "localisation/frustum.hpp"
+
 namespace relplane::mapper {
 namespace {
 

@@ -1,6 +1,6 @@
 // Soft-linked groups (pose_graph.hpp): a loop of groups tied through shared planes is solved
 // together, and a plane taken out of a group does not break the chain.
-#include "relplane/mapper/pose_graph.hpp"
+#include "global_map/pose_graph.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "relplane/mapper/registration.hpp"
+#include "plane_store/registration.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -37,10 +37,10 @@ TEST(MarkJumpedEnds, APieceOfAWallSeenWholeHasItsDoorSideEndCut) {
   // iterations; then a door in it opens the view and the wall is seen as two pieces.
   MapperState state;
   RltPlane wall(0, Seen({3, -2}, {3, 2}, 0), 0.05, 3000);
-  state.poses[0] = {0, 0, 0};
+  state.trajectory.poses[0] = {0, 0, 0};
   for (int64_t k = 1; k < 20; ++k) {
     wall.Add(Seen({3, -2}, {3, 2}, k));
-    state.poses[k] = {0, 0, 0};
+    state.trajectory.poses[k] = {0, 0, 0};
   }
   state.planes.emplace(0, wall);
   std::vector<Observation> now = {Seen({3, -2}, {3, -0.6}, 20), Seen({3, 0.6}, {3, 2}, 20)};
@@ -61,14 +61,14 @@ TEST(MarkJumpedEnds, AnEndThatMovesWithTheSensorIsNotCut) {
     return Seen(Vector2d(-x, 1.0), Vector2d(6.0 - x, 1.0), k);
   };
   RltPlane wall(0, seen_from(0.0, 0), 0.05, 3000);
-  state.poses[0] = {0, 0, 0};
+  state.trajectory.poses[0] = {0, 0, 0};
   for (int64_t k = 1; k < 30; ++k) {
     wall.Add(seen_from(k / 30.0, k));
-    state.poses[k] = {k / 30.0, 0, 0};
+    state.trajectory.poses[k] = {k / 30.0, 0, 0};
   }
   state.planes.emplace(0, wall);
   std::vector<Observation> now = {seen_from(1.0, 30)};
-  MarkJumpedEnds({0}, state, state.poses.rbegin()->second, &now);
+  MarkJumpedEnds({0}, state, state.trajectory.poses.rbegin()->second, &now);
   EXPECT_FALSE(now[0].cut[0]);
   EXPECT_FALSE(now[0].cut[1]);
 }

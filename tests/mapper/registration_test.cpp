@@ -1,6 +1,6 @@
 // Unit tests of §II.A registration: matching an observation with a recently seen rltplane,
 // and one plane per surface and iteration as the segmenter reports it.
-#include "relplane/mapper/registration.hpp"
+#include "plane_store/registration.hpp"
 
 #include <gtest/gtest.h>
 
@@ -192,7 +192,7 @@ TEST(Registration, ASightingSomeIterationsOldIsComparedFromWhereTheSensorIsNow) 
   state.planes.emplace(
       1, RltPlane(1, *MakeObservation(Wall({4.0, 0.0}, {4.0, 0.5}), 6, 0.3), 0.05, 100));
   state.recent = {1};
-  state.poses[6] = geometry::Pose2{0.0, 0.0, 0.0};
+  state.trajectory.poses[6] = geometry::Pose2{0.0, 0.0, 0.0};
   const geometry::Pose2 now{0.0, 0.0, 0.12};
   const geometry::Pose2 to_sensor = now.Inverse();
   const auto seen_now = [&](Vector2d a, Vector2d b, int64_t k) {
@@ -206,7 +206,7 @@ TEST(Registration, ASightingSomeIterationsOldIsComparedFromWhereTheSensorIsNow) 
   // The face itself, seen again once the turn has ended, still registers.
   state.planes.at(1).Add(*MakeObservation(
       Wall(to_sensor * Vector2d(4.0, 0.0), to_sensor * Vector2d(4.0, 0.5)), 11, 0.3));
-  state.poses[11] = now;
+  state.trajectory.poses[11] = now;
   EXPECT_EQ(RegisterObservations(seen_now({4.0, 0.0}, {4.0, 0.5}, 12), state, options, &now)[0], 1);
 }
 
@@ -227,7 +227,7 @@ TEST(Registration, APieceOfAWallTakesTheWallsOtherRltplaneWhenItsFirstChoiceIsTa
   state.planes.at(1).Add(seen_from(0.35, {3, -2}, {3, -0.5}, 7));
   state.planes.at(1).Add(seen_from(0.40, {3, -2}, {3, -0.5}, 8));
   state.planes.emplace(2, RltPlane(2, seen_from(0.45, {3, -2}, {3, 2}, 9), 0.05, 100));
-  for (int64_t k = 6; k <= 9; ++k) state.poses[k] = {0.05 * static_cast<double>(k), 0.0, 0.0};
+  for (int64_t k = 6; k <= 9; ++k) state.trajectory.poses[k] = {0.05 * static_cast<double>(k), 0.0, 0.0};
   state.recent = {1, 2};
   const std::vector<Observation> now = {seen_from(0.5, {3, 0.5}, {3, 2}, 10),
                                         seen_from(0.5, {3, -2}, {3, -0.5}, 10)};
@@ -240,7 +240,7 @@ TEST(Registration, APieceOfAWallTakesTheWallsOtherRltplaneWhenItsFirstChoiceIsTa
   MapperState whole_older = state;
   whole_older.planes.erase(2);
   whole_older.planes.emplace(2, RltPlane(2, seen_from(0.25, {3, -2}, {3, 2}, 5), 0.05, 100));
-  whole_older.poses[5] = {0.25, 0.0, 0.0};
+  whole_older.trajectory.poses[5] = {0.25, 0.0, 0.0};
   for (int64_t k = 6; k <= 9; ++k) {
     whole_older.planes.at(2).Add(seen_from(0.05 * static_cast<double>(k), {3, -2}, {3, 2}, k));
   }
@@ -271,7 +271,7 @@ TEST(Registration, AWallSeenWholeAsALineAlsoFeedsItsOlderMappedRltplane) {
     }
   }
   state.planes.emplace(2, RltPlane(2, seen_from(0.45, {3, 0.5}, {3, 2}, 9), 0.05, 100));
-  for (int64_t k = 1; k <= 9; ++k) state.poses[k] = {0.05 * static_cast<double>(k), 0.0, 0.0};
+  for (int64_t k = 1; k <= 9; ++k) state.trajectory.poses[k] = {0.05 * static_cast<double>(k), 0.0, 0.0};
   state.recent = {1, 2};
   state.global[1] = Placement{};
   std::vector<Observation> now = {seen_from(0.5, {3, -2}, {3, 2}, 10)};

@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "ideal_segmenter.hpp"
-#include "relplane/mapper/global_map.hpp"
-#include "relplane/mapper/regrouping.hpp"
-#include "relplane/mapper/relative_map.hpp"
+#include "global_map/global_map.hpp"
+#include "grouping/regrouping.hpp"
+#include "global_map/relative_map.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -473,7 +473,7 @@ TEST(BoundedMemory, TheFirstGroupStaysAnchoredWhenItsObservationsAreGone) {
   const Pose2 anchored = state.groups[0].placement;
   const auto placed = state.global;
   for (auto& [id, plane] : state.planes) plane.DropBefore(plane.LastSeen());
-  state.poses.clear();
+  state.trajectory.poses.clear();
   state.groups[0].dirty = true;
   BuildGlobalMap(state, 0, mapper.Options());
   EXPECT_NEAR(state.groups[0].placement.x, anchored.x, 1e-9);

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "ideal_segmenter.hpp"
-#include "relplane/mapper/rltplane.hpp"
+#include "plane_store/rltplane.hpp"
 
 namespace relplane::mapper {
 namespace {

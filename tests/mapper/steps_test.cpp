@@ -6,11 +6,12 @@
 #include <cmath>
 
 #include "ideal_segmenter.hpp"
-#include "relplane/mapper/global_map.hpp"
-#include "relplane/mapper/grouping.hpp"
-#include "relplane/mapper/localisation.hpp"
+#include "global_map/global_map.hpp"
+#include "grouping/grouping.hpp"
+#include "localisation/pose_solver.hpp"
+#include "plane_store/view_cuts.hpp"
 #include "relplane/mapper/mapper.hpp"
-#include "relplane/mapper/registration.hpp"
+#include "plane_store/registration.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -405,8 +406,8 @@ TEST(GlobalMap, AGroupMadeAfterTheMotionModelIsPlacedFromAPoseTheWallsFixed) {
     if (k > 0) left.Add(seen_from(x, left0, left1, k));
     if (k > 0) piece.Add(seen_from(x, piece0, piece1, k));
     if (k > 45) jamb.Add(seen_from(x, jamb0, jamb1, k));
-    state.poses[k] = {std::min(x, sensor_x(40)), 0.0, 0.0};
-    if (k <= 40) state.fixed_poses.insert(k);
+    state.trajectory.poses[k] = {std::min(x, sensor_x(40)), 0.0, 0.0};
+    if (k <= 40) state.trajectory.fixed.insert(k);
   }
   // Frame angles as seen from the hallway: the left wall 0, the piece pi (its edge 0 is the
   // x = 5 end), the jamb -pi/2.
@@ -504,13 +505,13 @@ TEST(MarkViewCuts, SightingsKeptByGroupsAreCutWithTheirObservations) {
   // A wall 1 m to the side, from its end 2 m ahead to the 6 m range, seen from a still sensor.
   See(&state, 0, 1, {2.0, 1.0}, {std::sqrt(35.0), 1.0});
   See(&state, 0, 2, {2.0, 1.0}, {std::sqrt(35.0), 1.0});
-  state.poses[1] = state.poses[2] = {0.0, 0.0, 0.0};
+  state.trajectory.poses[1] = state.trajectory.poses[2] = {0.0, 0.0, 0.0};
   const Observation& first = state.planes.at(0).Observations().front();
   const int far = first.edge[0].norm() > first.edge[1].norm() ? 0 : 1;
   Group group;
   group.members = {0};
-  group.seen[0] = SeenFrom(first, state.poses[1]);
-  group.seen_fixed[0] = SeenFrom(state.planes.at(0).Latest(), state.poses[2]);
+  group.seen[0] = SeenFrom(first, state.trajectory.poses[1]);
+  group.seen_fixed[0] = SeenFrom(state.planes.at(0).Latest(), state.trajectory.poses[2]);
   group.shows_end[{0, far, 2}] = true;
   group.dirty = false;
   state.groups.push_back(group);

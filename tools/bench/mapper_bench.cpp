@@ -56,8 +56,8 @@ void BM_Iteration30VisiblePlanes(benchmark::State& state) {
     ++k;
   }
   state.counters["visible"] = static_cast<double>(visible) / state.iterations();
-  state.counters["map"] = static_cast<double>(mapper.State().global.size());
-  state.counters["groups"] = static_cast<double>(mapper.State().groups.size());
+  state.counters["map"] = static_cast<double>(mapper.Stats().map_planes);
+  state.counters["groups"] = static_cast<double>(mapper.Stats().groups);
 }
 BENCHMARK(BM_Iteration30VisiblePlanes)->Unit(benchmark::kMicrosecond)->Iterations(1000)
     ->Repetitions(5)->ReportAggregatesOnly(true);
@@ -94,7 +94,7 @@ void BM_IterationWith2000PlaneMap(benchmark::State& state) {
   const auto& tail = large.tail;
   int64_t& k = large.next;
   const int64_t base = large.base;
-  const int64_t start = static_cast<int64_t>(mapper->State().global.size());
+  const int64_t start = static_cast<int64_t>(mapper->Stats().map_planes);
   for (auto _ : state) {
     const size_t i = static_cast<size_t>(k - base) % tail.size();
     const auto est = mapper->Process(k, tail[i]);
@@ -102,8 +102,8 @@ void BM_IterationWith2000PlaneMap(benchmark::State& state) {
     ++k;
   }
   state.counters["map"] = static_cast<double>(start);
-  state.counters["groups"] = static_cast<double>(mapper->State().groups.size());
-  state.counters["graph_solves"] = static_cast<double>(mapper->State().graph_solves);
+  state.counters["groups"] = static_cast<double>(mapper->Stats().groups);
+  state.counters["graph_solves"] = static_cast<double>(mapper->Stats().graph_solves);
 }
 BENCHMARK(BM_IterationWith2000PlaneMap)->Unit(benchmark::kMicrosecond)->Iterations(300)
     ->Repetitions(5)->ReportAggregatesOnly(true);

@@ -24,6 +24,7 @@ namespace {
 
 using namespace relplane::mapper::testing;
 using relplane::mapper::Mapper;
+using relplane::mapper::MapperStats;
 
 // Resident set size of this process in MiB, from /proc/self/status (0 where it is absent).
 double ResidentMiB() {
@@ -64,15 +65,15 @@ struct Errors {
 
 Sample Measure(const Mapper& mapper, double minute, const std::vector<double>& window_ms,
                const Errors& errors) {
-  const auto& state = mapper.State();
+  const MapperStats stats = mapper.Stats();
   Sample s;
   s.minute = minute;
   s.rss_mib = ResidentMiB();
   s.heap_mib = static_cast<double>(mallinfo2().uordblks) / (1024.0 * 1024.0);
-  s.planes = state.planes.size();
-  for (const auto& [id, plane] : state.planes) s.observations += plane.Observations().size();
-  s.comparisons = state.comparisons.size();
-  s.groups = state.groups.size();
+  s.planes = stats.planes;
+  s.observations = stats.observations;
+  s.comparisons = stats.comparisons;
+  s.groups = stats.groups;
   s.p50_ms = relplane::Percentile(window_ms, 0.5);
   s.p99_ms = relplane::Percentile(window_ms, 0.99);
   s.max_ms = window_ms.empty() ? 0.0 : *std::max_element(window_ms.begin(), window_ms.end());

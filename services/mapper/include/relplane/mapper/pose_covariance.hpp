@@ -2,7 +2,7 @@
 // The covariance published with each pose (pose_t.covariance): the observability of what the
 // frame's localisation used (observability.hpp).
 
-#include "relplane/mapper/localisation.hpp"
+#include "relplane/mapper/types.hpp"
 #include "relplane/mapper/observability.hpp"
 
 namespace relplane::mapper {

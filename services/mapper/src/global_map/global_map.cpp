@@ -1,0 +1,523 @@
+#include "global_map/global_map.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include "global_map/group_prior.hpp"
+#include "localisation/pose_solver.hpp"
+#include "global_map/pose_graph.hpp"
+#include "global_map/relative_map.hpp"
+
+namespace relplane::mapper {
+namespace {
+
+// rad^-2: the chained orientation as a gauge only, for planes no comparison links to the held
+// ones (a comparison's information is 1e2-1e5; 0.01 or 100 here changed no recording's map).
+constexpr double kChainedOrientationPrior = 1.0;
+
+// Weighing a link's line (Solve): the offset noise of a fitted line where its points are, a
+// short piece's orientation bias over its length (as comparison.cpp's short-piece blur), and
+// how well a line must be known to count fully.
+constexpr double kLineNoise = 0.01;       // m
+constexpr double kShortPieceBias = 0.03;  // m
+constexpr double kFullLine = 0.03;        // m
+// A link's static edge further than this along its wall from where the group's prior puts the
+// group is not taken while another link's edge agrees with the prior (Solve): the prior comes
+// from the pose when the group was made (centimetres off, a decimetre or two after a long
+// motion-model stretch); a wrongly paired edge is a wall's length or a door's width off.
+constexpr double kEdgeGate = 0.5;  // m
+
+using Eigen::Matrix2d;
+using Eigen::Vector2d;
+using geometry::Pose2;
+
+// How much a line placed in a relative map by its orientation (Known::kLine) counts where the
+// wall stands, `lever` metres along it from where its offset was measured: its fit's noise and a
+// short piece's orientation bias over the lever, against kFullLine.
+double LineWeight(double lever, double length) {
+  const double bias = std::atan2(kShortPieceBias, std::max(length, 1e-3));
+  const double sigma = std::hypot(kLineNoise, lever * bias);
+  return std::min(1.0, (kFullLine * kFullLine) / (sigma * sigma));
+}
+
+// Does the plane's first sighting show the end `ref` its relative map starts from? Only if the
+// latest uncut sighting of that end from a known pose lies where the first one did. A wall seen
+// whole across a door from the start pose (its edges where the view cut it, before the view was
+// learnt) is later known by the door-side end of its piece: that end lay 2.6 m along the wall
+// from the first sighting's, and the first group was placed 2.6 m off (an unseen office, 70
+// degree sensor).
+bool FirstSightingShowsEnd(const MapperState& state, const RltPlane& plane, const SeenWall& first,
+                           int ref) {
+  if (ref < 0 || first.cut[ref]) return false;
+  const auto& all = plane.Observations();
+  const Vector2d t = DirectionOf(first.alpha);
+  for (size_t i = all.size(); i > 0; --i) {
+    const Observation& obs = all[i - 1];
+    const auto pose = state.trajectory.poses.find(obs.iteration);
+    if (obs.cut[ref] || pose == state.trajectory.poses.end()) continue;
+    return std::abs(t.dot(pose->second * obs.edge[ref] - first.edge[ref])) <= kFirstEndAgreement;
+  }
+  return true;  // nothing seen since contradicts it
+}
+
+struct Link {
+  Placement relative;
+  Placement global;
+  const RltPlane* plane;
+  // rad^-2: how well `global`'s orientation is known where it is one sighting (the first
+  // group's); 0: as well as the plane's best fit (OrientationWeight).
+  double orientation_weight = 0.0;
+};
+
+// The orientation weight of a plane's sighting at `iteration`: its fit's noise and, as a single
+// fit is not averaged over an interval, a short piece's bias over its length (PieceBlur). 0 when
+// the observation is gone.
+double SightingOrientationWeight(const RltPlane& plane, int64_t iteration) {
+  const auto& all = plane.Observations();
+  const size_t i = plane.LowerBound(iteration);
+  if (i >= all.size() || all[i].iteration != iteration) return 0.0;
+  const double blur = PieceBlur(all[i]);
+  return 1.0 / (1.0 / OrientationWeight(all[i]) + blur * blur);
+}
+
+// Least squares for world <- group: rotation from the mean orientation difference, translation
+// from the links' lines (1 equation each) and shared static edges (1 more along the wall).
+Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_weight) {
+  const Pose2& prior = prior_in.pose;
+  double s = 0.0, c = 0.0;
+  for (const Link& l : links) {
+    // Weighted by how well each wall's fit fixes its orientation, as in localisation: a door
+    // jamb must not turn a group of walls metres long.
+    const double w =
+        l.orientation_weight > 0.0 ? l.orientation_weight : OrientationWeight(*l.plane);
+    const double d = l.global.alpha - l.relative.alpha;
+    s += w * std::sin(d), c += w * std::cos(d);
+  }
+  const double yaw = links.empty() ? prior.yaw : std::atan2(s, c);
+  const Matrix2d rot = Eigen::Rotation2Dd(yaw).toRotationMatrix();
+  // A link's two lines are compared where the wall is (its latest sighting, as the pose then
+  // put it), not at the point of the group's line: that is the foot of the perpendicular from
+  // the edge the line was measured from (relative_map.cpp PlaceLine), which may lie metres along
+  // the line, where the two lines' slightly different orientations part. `guess` is the
+  // translation that looks the wall up in the group's frame: centimetres off move the point by
+  // as much along the line, where the lines nearly agree.
+  // Each line is weighed by how well its offset is known where the wall is: its fit's noise, and
+  // a short piece's orientation bias (3 cm over its length) carried over the distance from the
+  // edge it was measured from. A line known within kFullLine counts fully, as every line did: a
+  // 0.3 m pilaster side, fitted 1.2 degrees off and measured from a recess corner 2.3 m along
+  // its line, was 4.8 cm off where it stands, and as it became its group's link it decided the
+  // group's position along a hallway (the static edge that had decided it is only used where
+  // the lines leave a direction open), moving the group and the pose 6.4 cm back.
+  auto lines_at = [&](const Vector2d& guess, Matrix2d* a, Vector2d* b) {
+    *a = Matrix2d::Zero();
+    *b = Vector2d::Zero();
+    for (const Link& l : links) {
+      if (l.relative.known == Known::kAngle || l.global.known == Known::kAngle) continue;
+      const Vector2d n = NormalOf(l.global.alpha);
+      Vector2d at = l.relative.point;
+      double weight = 1.0;
+      if (l.relative.known == Known::kLine && l.plane->latest_pose_known) {
+        const Observation& latest = l.plane->Latest();
+        const Vector2d wall = l.plane->latest_pose * (0.5 * (latest.edge[0] + latest.edge[1]));
+        const Vector2d d = DirectionOf(l.relative.alpha);
+        const double lever = d.dot(rot.transpose() * (wall - guess) - l.relative.point);
+        at += d * lever;
+        weight = LineWeight(lever, l.plane->Length());
+      }
+      *a += weight * n * n.transpose();
+      *b += weight * n * n.dot(l.global.point - rot * at);
+    }
+  };
+  Matrix2d a;
+  Vector2d b;
+  lines_at(prior.Translation(), &a, &b);
+  if (Eigen::SelfAdjointEigenSolver<Matrix2d>(a).eigenvalues()(0) >= 0.5) {
+    lines_at(a.ldlt().solve(b), &a, &b);  // once more from where the lines put the group
+  }
+  // The prior only decides a direction the links leave open; along the directions its members'
+  // lines span, those lines as seen with the heading the links give, its ends' placement along
+  // the rest.
+  Vector2d prior_t = prior.Translation();
+  if (!prior_in.lines.empty()) {
+    Matrix2d la = Matrix2d::Zero();
+    Vector2d lb = Vector2d::Zero();
+    for (const PriorLine& line : prior_in.lines) {
+      const Vector2d n = NormalOf(yaw + line.member.alpha);
+      // Weighed as the links' lines are: a door jamb's line, placed through a comparison with the
+      // room's far wall where the two cross 5 m away, was 7 cm off where the jamb stands and
+      // counted as fully as the room's side walls; when the group's basis changed it moved the
+      // group, the pose and the room's walls 2.7 cm across the room (office, σ = 1 cm, seed 22:
+      // a wall mapped 6 cm off). A direction only such lines span, below kOpenInformation, is
+      // left to the ends' placement.
+      double weight = 1.0;
+      if (line.member.known == Known::kLine) {
+        const Vector2d d = DirectionOf(line.member.alpha);
+        const double lever =
+            d.dot(rot.transpose() * (line.seen_point - prior.Translation()) - line.member.point);
+        weight = LineWeight(lever, line.length);
+      }
+      la += weight * n * n.transpose();
+      lb += weight * n * n.dot(line.seen_point - rot * line.member.point);
+    }
+    prior_t = SolveWithPrior(la, lb, prior_t, 0.0, 0.0);
+  }
+  // Lines are exact whatever the edges do; static edges are added only where the lines leave
+  // a direction open (parallel walls), since an edge taken for static may not quite be. One
+  // link's edge each, unless some agree with the prior along their wall and others lie more
+  // than kEdgeGate from it: those are dropped. Where one link's piece in the group's relative
+  // map is paired at the wrong end (a hallway wall 2 m long whose end next to a recess was
+  // taken for its far end), the two edges of a group's links put it 2 m apart and their mean
+  // moved the group and the pose 1 m along the hallway in one iteration (hallway_out_and_back
+  // at 1 cm, the turn back).
+  Eigen::SelfAdjointEigenSolver<Matrix2d> eig(a);
+  if (eig.eigenvalues()(0) < 0.5) {
+    struct EdgeTie {
+      Vector2d along;        // the wall's direction
+      Vector2d translation;  // the group's translation the edge puts it at
+    };
+    std::vector<EdgeTie> ties;
+    for (const Link& l : links) {
+      if (l.relative.known == Known::kAngle || l.global.known == Known::kAngle) continue;
+      for (int e = 0; e < 2; ++e) {
+        Vector2d rel_point, global_point;
+        if (!EdgePoint(*l.plane, l.global, e, &global_point) ||
+            !EdgePoint(*l.plane, l.relative, e, &rel_point)) {
+          continue;
+        }
+        ties.push_back({DirectionOf(l.global.alpha), global_point - rot * rel_point});
+        break;
+      }
+    }
+    auto agrees = [&](const EdgeTie& tie) {
+      return std::abs(tie.along.dot(tie.translation - prior_t)) <= kEdgeGate;
+    };
+    const bool any_agrees = std::any_of(ties.begin(), ties.end(), agrees);
+    for (const EdgeTie& tie : ties) {
+      if (any_agrees && !agrees(tie)) continue;
+      a += tie.along * tie.along.transpose();
+      b += tie.along * tie.along.dot(tie.translation);
+    }
+  }
+  const Vector2d t = SolveWithPrior(a, b, prior_t, prior_weight, 0.5);
+  return {t.x(), t.y(), yaw};
+}
+
+Placement Apply(const Pose2& pose, const Placement& p) {
+  Placement out = p;
+  out.alpha = geometry::WrapAngle(pose.yaw + p.alpha);
+  out.point = pose * p.point;
+  return out;
+}
+
+}  // namespace
+
+Placement PlacementOf(const SeenWall& seen, int ref) {
+  Placement p;
+  p.alpha = seen.alpha;
+  p.point = ref >= 0 ? seen.edge[ref] : 0.5 * (seen.edge[0] + seen.edge[1]);
+  p.ref = ref;
+  p.known = ref >= 0 ? Known::kPoint : Known::kLine;
+  return p;
+}
+
+SeenWall EndSeenFromFixedPoses(const MapperState& state, const RltPlane& plane, int ref) {
+  SeenWall latest;
+  if (ref < 0) return latest;
+  std::vector<double> along;  // each sighting's end, along the wall from the latest one's
+  const auto& all = plane.Observations();
+  for (size_t i = all.size(); i > 0; --i) {
+    const Observation& obs = all[i - 1];
+    const auto pose = state.trajectory.poses.find(obs.iteration);
+    if (obs.cut[ref] || pose == state.trajectory.poses.end() || state.trajectory.fixed.count(obs.iteration) == 0) {
+      continue;
+    }
+    const SeenWall seen = SeenFrom(obs, pose->second);
+    if (!latest.valid) latest = seen;
+    along.push_back(DirectionOf(latest.alpha).dot(seen.edge[ref] - latest.edge[ref]));
+  }
+  if (!latest.valid) return latest;
+  std::sort(along.begin(), along.end());
+  const size_t n = along.size();
+  const double median = n % 2 == 1 ? along[n / 2] : 0.5 * (along[n / 2 - 1] + along[n / 2]);
+  latest.edge[ref] += median * DirectionOf(latest.alpha);
+  return latest;
+}
+
+Placement PlacementOf(const Observation& obs, const Pose2& pose, int ref) {
+  return PlacementOf(SeenFrom(obs, pose), ref);
+}
+
+void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& placed,
+              Vector2d* lo_out, Vector2d* hi_out) {
+  const Vector2d t = DirectionOf(placed.alpha);
+  const double length = plane.Length();
+  Vector2d lo, hi;
+  if (placed.known == Known::kPoint && placed.has_other) {
+    lo = placed.ref == 0 ? placed.point : placed.other;
+    hi = placed.ref == 0 ? placed.other : placed.point;
+  } else if (placed.known == Known::kPoint && placed.ref == 1) {
+    hi = placed.point, lo = hi - length * t;
+  } else if (placed.known == Known::kPoint) {
+    lo = placed.point, hi = lo + length * t;
+  } else {
+    lo = hi = placed.point;
+    // Its extent as last seen, from the pose then.
+    const Observation& last = plane.Latest();
+    auto pose = state.trajectory.poses.find(last.iteration);
+    if (pose != state.trajectory.poses.end() || plane.latest_pose_known) {
+      const Pose2& from = pose != state.trajectory.poses.end() ? pose->second : plane.latest_pose;
+      const Vector2d a = from * last.edge[0], b = from * last.edge[1];
+      lo = placed.point + t * t.dot(a - placed.point);
+      hi = placed.point + t * t.dot(b - placed.point);
+      if (t.dot(hi - lo) < 0) std::swap(lo, hi);
+    }
+  }
+  *lo_out = lo;
+  *hi_out = hi;
+}
+
+// Places the members of group `g` not yet on the global map (hard rule: the first group to
+// place a plane wins, unless a later one knows more), from the group's placement.
+void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
+  Group& group = state.groups[g];
+  for (const auto& [id, rel] : group.relative.members) {
+    // Kept now, while the observation is there, for when this group places it.
+    if (rel.known == Known::kAngle) LineWhenMade(state, g, id, options);
+    auto it = state.global.find(id);
+    // Hard chaining: the first group to place a plane wins, unless a later one knows more.
+    // A later group that found the plane's other edge static adds that end to the map.
+    if (it != state.global.end() && it->second.known >= rel.known) {
+      Placement& placed = it->second;
+      if (placed.known == Known::kPoint && rel.known == Known::kPoint && rel.ref != placed.ref &&
+          !placed.has_other) {
+        const Vector2d t = DirectionOf(placed.alpha);
+        const Vector2d w = group.placement * rel.point;
+        placed.other = placed.point + t * t.dot(w - placed.point);
+        placed.has_other = true;
+        placed.other_by = static_cast<int64_t>(g);
+      }
+      continue;
+    }
+    Placement world = Apply(group.placement, rel);
+    if (rel.known == Known::kAngle) {
+      // No comparison pins its line yet: the line as seen when the group was made, from the pose
+      // then (§II.A end: "transformed using current position"). In the first group that is one
+      // sighting: it is turned about the middle of what was seen to the orientation the group's
+      // comparisons give it (§II.C, averaged over their intervals). As one sighting had it, a
+      // hallway wall's far piece fitted 0.4 degrees off in the start pose's view (a few of a
+      // jamb's points) kept that orientation, and the pose turned with it over the next 2 m (a
+      // doors loop at 1 cm, seed 29: 0.35 degrees by iteration 70). A later group's
+      // line fuses the sightings from fixed poses (LineWhenMade), which fix its orientation
+      // better than comparisons that do not even pin its line: turned to those, an office's
+      // wall went 1.7 degrees off, the next group was placed through it and a room's walls came
+      // out 7 cm off (office_other_sensor at 1 cm, seed 22).
+      const double alpha = world.alpha;
+      world = PlacementOf(LineWhenMade(state, g, id, options), -1);
+      if (g == 0) world.alpha = alpha;
+    }
+    state.global[id] = world;
+    state.chained_alpha[id] = world.alpha;
+    state.placed_by[id] = static_cast<int64_t>(g);
+  }
+}
+
+void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options) {
+  // Forget what the re-placed groups placed.
+  std::set<size_t> earlier;  // groups before `from` that share a plane a re-placed group placed
+  for (auto it = state.placed_by.begin(); it != state.placed_by.end();) {
+    if (static_cast<size_t>(it->second) >= from) {
+      if (const RltPlane* plane = state.Plane(it->first)) {
+        for (int64_t g : plane->groups) {
+          if (static_cast<size_t>(g) < from) earlier.insert(static_cast<size_t>(g));
+        }
+      }
+      state.global.erase(it->first);
+      it = state.placed_by.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  for (auto& [id, placed] : state.global) {
+    if (placed.has_other && static_cast<size_t>(placed.other_by) >= from) placed.has_other = false;
+  }
+  // A plane an earlier group placed and a re-placed one took over (it knew more) goes back to
+  // the earlier group's placement: otherwise the re-placed group lost that link and was placed
+  // without it (§II.D chains groups through shared planes), from its members' first sightings
+  // when it had no other (a door jamb's group turned 3.7 degrees in one iteration).
+  for (size_t g : earlier) PlaceMembers(state, g, options);
+  // Those go back with their chained orientations: they are refined in this pass as well.
+  const size_t refined_from = earlier.empty() ? from : std::min(from, *earlier.begin());
+  const Pose2 start{options.start_pose.x, options.start_pose.y, options.start_pose.yaw};
+  for (size_t g = from; g < state.groups.size(); ++g) {
+    Group& group = state.groups[g];
+    if (group.dirty) {
+      group.relative = BuildRelativeMap(group, state, options.comparison);
+      group.dirty = false;
+    }
+    // Through its links as every comparison between mapped walls turns them, as localisation
+    // sees them, not as the groups re-placed just before chained them: a group that places a
+    // wall from a static edge metres along it from where an earlier group put the wall's line
+    // turns the line about that edge, and the chained orientation (0.65 degrees from the
+    // refined one, through a door's pieces) moved a room's side walls and the pose 6.8 cm
+    // across the room in one iteration (an unseen office, 70 degree sensor). Refining turns
+    // only the walls placed in this pass: without a link among them it would change nothing.
+    bool link_replaced = false;
+    for (const auto& [id, rel] : group.relative.members) {
+      const auto by = state.placed_by.find(id);
+      link_replaced |=
+          by != state.placed_by.end() && static_cast<size_t>(by->second) >= refined_from;
+    }
+    if (link_replaced) RefineGlobalOrientations(state, refined_from);
+    std::vector<Link> links;
+    for (const auto& [id, rel] : group.relative.members) {
+      auto it = state.global.find(id);
+      if (it != state.global.end()) links.push_back({rel, it->second, state.Plane(id)});
+    }
+    // Prior: the basis as seen when the group was made, from the pose then. It only decides
+    // directions the links leave open. The basis may change as evidence grows, so the
+    // sighting is kept, not the frame.
+    Prior prior;
+    prior.pose = start;
+    if (state.Plane(group.relative.basis) != nullptr) {
+      prior = PriorWithMemberLines(state, g, options);
+    }
+    if (links.empty()) {
+      // §II.D "the first grouping can be placed on the global map by comparing the relative
+      // map coordinates of each rltplane to its first observation".
+      // Only observations made from the start pose itself when there are any.
+      bool any_at_start = false;
+      for (const auto& [id, rel] : group.relative.members) {
+        any_at_start |= state.Plane(id)->FirstSeen() == state.first_iteration;
+      }
+      // Each plane's first sighting is kept with the plane: its observations may be gone.
+      for (const auto& [id, rel] : group.relative.members) {
+        const RltPlane* plane = state.Plane(id);
+        if (any_at_start && plane->FirstSeen() != state.first_iteration) continue;
+        const Observation& first = plane->Observations().front();
+        const SeenWall seen = plane->first_seen.valid
+                                  ? plane->first_seen
+                                  : SeenFrom(first, PoseAt(state, first.iteration, options));
+        // Its end too where the sighting shows it, but not where the samples along the wall
+        // landed too far apart there (CoarselySampled): seen 5-6 m off at a grazing angle, the
+        // ends of a side wall's two pieces beside a door recess were sampled 23 and 31 cm apart
+        // and lay 5 and 14 cm short; the first group, placed between the two, put them 9 cm
+        // short, and the poses that took them went 13 cm along the hallway for the rest of the
+        // run (hallway_out_and_back, σ = 1 cm, seed 164).
+        // Its line is taken then, and the prior's ends, each as seen most finely, place it along.
+        const int ref = rel.known == Known::kPoint &&
+                                FirstSightingShowsEnd(state, *plane, seen, rel.ref) &&
+                                !CoarselySampled(state, seen, rel.ref)
+                            ? rel.ref
+                            : -1;
+        links.push_back({rel, PlacementOf(seen, ref), plane,
+                         SightingOrientationWeight(*plane, seen.iteration)});
+      }
+    }
+    group.placement = Solve(links, prior, options.localisation.prior_weight);
+    group.chained = group.placement;
+    group.has_chained = true;
+    PlaceMembers(state, g, options);
+    group.loop_evidence = GroupLoopEvidence(state, g, options.grouping.recent_groups);
+  }
+  // Soft-linked groups: when a loop closes (or a closing tie learns more), the group placements
+  // are solved together over the graph of ties and every group re-places its members.
+  size_t refine_from = refined_from;
+  int evidence = 0;
+  for (const Group& group : state.groups) evidence += group.loop_evidence;
+  evidence += state.pose_ties_made;
+  if (options.graph.enabled && evidence > state.loop_evidence) {
+    state.loop_evidence = evidence;
+    const PoseGraphResult solved = OptimiseGroupPlacements(state, options.graph);
+    ++state.graph_solves;
+    if (solved.cost_after < solved.cost_before) {
+      state.global.clear();
+      state.placed_by.clear();
+      for (size_t g = 0; g < state.groups.size(); ++g) PlaceMembers(state, g, options);
+      refine_from = 0;
+    }
+  }
+  RefineGlobalOrientations(state, refine_from);
+  state.map_changed = true;
+}
+
+void RefineGlobalOrientations(MapperState& state, size_t from) {
+  // Least squares on the corrections from the chained orientations, as RefineOrientations does
+  // within a group, over every comparison between two planes on the global map; the first
+  // group's planes are held (§II.D: it is placed from the start pose). Hard chaining (§II.D)
+  // gives a wall its orientation from the one group that placed it, through that group's
+  // comparisons only. A group made at a door holds the walls of the next room and, of the room
+  // it leaves, only the short pieces beside the door, whose fits are off by 1.2-1.5 degrees
+  // towards the door, mirrored on its two sides (a piece takes some of the jamb's points): where
+  // it holds more pieces of one side (both pieces of the wall and one jamb, the other jamb in the
+  // group before), the next room's walls came out 0.33 degrees off, and every later group and
+  // pose with them (an unseen office: two walls 6 cm off). The other side's comparisons with
+  // those walls were there, in other groups, and balance them: 0.09 degrees, the walls within
+  // 4 cm. Anchored at the chained values rather than at the last solution, so solving again
+  // after every placement does not walk the orientations away (as pose_graph.cpp's priors).
+  // The planes placed before `from` were not re-placed: they are held as last solved.
+  // Called before every re-placed group is solved (BuildGlobalMap): the cost follows those
+  // groups, not the map, and sorted vectors stand in for trees.
+  std::vector<int64_t> ids;
+  for (size_t g = std::max<size_t>(from, 1); g < state.groups.size(); ++g) {
+    for (const auto& [id, rel] : state.groups[g].relative.members) {
+      const auto by = state.placed_by.find(id);
+      if (by == state.placed_by.end() || static_cast<size_t>(by->second) != g) continue;
+      if (state.chained_alpha.count(id)) ids.push_back(id);
+    }
+  }
+  std::sort(ids.begin(), ids.end());
+  const int n = static_cast<int>(ids.size());
+  if (n == 0) return;
+  auto index_of = [&](int64_t id) {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+    return it != ids.end() && *it == id ? static_cast<int>(it - ids.begin()) : -1;
+  };
+  // A solved plane from its chained orientation, a held one as it stands.
+  auto value = [&](int64_t id, int k) {
+    return k >= 0 ? state.chained_alpha.at(id) : state.global.at(id).alpha;
+  };
+  // Sparse: a plane is compared only with the members of its groups (§II.C).
+  std::vector<PairKey> pairs;
+  for (int64_t id : ids) {
+    for (int64_t g : state.Plane(id)->groups) {
+      for (int64_t other : state.groups[g].members) {
+        if (other != id) pairs.push_back(KeyOf(id, other));
+      }
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<Eigen::Triplet<double>> a;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  for (const PairKey& key : pairs) {
+    const Comparison* cmp = state.FindComparison(key.first, key.second);
+    if (cmp == nullptr || !state.global.count(key.first) || !state.global.count(key.second)) {
+      continue;
+    }
+    const double w = cmp->PieceInformation();
+    if (w <= 0.0) continue;
+    const int x = index_of(key.first), y = index_of(key.second);
+    const double r = geometry::WrapAngle(value(key.second, y) - value(key.first, x) -
+                                         cmp->PieceAlpha(key.first));
+    if (y >= 0) a.emplace_back(y, y, w), b(y) -= w * r;
+    if (x >= 0) a.emplace_back(x, x, w), b(x) += w * r;
+    if (x >= 0 && y >= 0) a.emplace_back(x, y, -w), a.emplace_back(y, x, -w);
+  }
+  // A weak prior at the chained value: the gauge of planes no comparison ties to the held ones.
+  for (int k = 0; k < n; ++k) a.emplace_back(k, k, kChainedOrientationPrior);
+  Eigen::SparseMatrix<double> h(n, n);
+  h.setFromTriplets(a.begin(), a.end());  // duplicates are summed
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(h);
+  if (solver.info() != Eigen::Success) return;
+  const Eigen::VectorXd dx = solver.solve(b);
+  if (!dx.allFinite()) return;
+  for (int k = 0; k < n; ++k) {
+    state.global.at(ids[k]).alpha = geometry::WrapAngle(value(ids[k], k) + dx(k));
+  }
+}
+
+}  // namespace relplane::mapper

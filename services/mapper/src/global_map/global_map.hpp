@@ -1,0 +1,45 @@
+#pragma once
+// §II.D Global map: the first group is anchored at the start pose by comparing its relative map
+// to its rltplanes' first observations (kept with each plane as SeenWall); every later group is placed through the rltplanes it
+// shares with groups already placed (the link planes), and places its other members.
+
+#include <cstddef>
+
+#include "relplane/mapper/options.hpp"
+#include "state.hpp"
+
+namespace relplane::mapper {
+
+// The placement of a wall observed as `obs` from sensor pose `pose`, with its point at edge
+// `ref` (or, when ref < 0, at the middle of the part in view: a fit's line is as good as its
+// points only where they are, and a door jamb's, a few degrees off, was 10 cm off at the foot of
+// the perpendicular from the sensor).
+Placement PlacementOf(const Observation& obs, const geometry::Pose2& pose, int ref);
+// The same for a wall seen earlier, already in the world.
+Placement PlacementOf(const SeenWall& seen, int ref);
+
+// The latest sighting of `plane` from a pose the walls fixed that shows its end `ref` (not cut
+// by the view), with that end moved to the median of all such sightings' (one outlier among
+// them does not decide); invalid when there is none.
+SeenWall EndSeenFromFixedPoses(const MapperState& state, const RltPlane& plane, int ref);
+
+// The mapped wall's two ends (lo, hi along its direction): its static edges where known, else
+// its length from the known one; for a wall known only by its line, the extent last seen, from
+// the pose then.
+void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& placed,
+              Eigen::Vector2d* lo, Eigen::Vector2d* hi);
+
+// Re-places groups `from`, `from + 1`, ... (hard chaining: a change in one group moves every
+// later one). Placements made by those groups are recomputed.
+void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options);
+
+// Soft-linked orientations (the paper's future work, §V): each global plane's orientation from
+// every comparison between planes on the global map, not only those of the group that placed
+// it, the first group's planes held. A wall first seen through a door is placed by a group whose
+// only comparisons with the walls already mapped are short pieces beside the door, fitted off
+// the same way on one side; a later group holding the jamb on the other side balances them.
+// Only the planes groups `from`, `from + 1`, ... placed are solved, against the others as they
+// stand: the map grows with the run while what one iteration re-places does not.
+void RefineGlobalOrientations(MapperState& state, size_t from = 0);
+
+}  // namespace relplane::mapper

@@ -1,0 +1,66 @@
+#pragma once
+// §II.D a group's prior: the group's members as seen around when it was made, kept in the
+// group so it can be placed again once their observations are dropped (§II.F storage). Internal
+// to the mapper library: global_map.cpp places the groups with it.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "relplane/common/geometry.hpp"
+#include "plane_store/observation.hpp"
+#include "relplane/mapper/options.hpp"
+#include "state.hpp"
+
+namespace relplane::mapper {
+
+// m: the first sighting's end and the latest one agree this well if they are the same end (edge
+// noise and the pose's drift since the start).
+constexpr double kFirstEndAgreement = 0.2;
+
+// One member's line in a group's prior: a point on it as seen around when the group was made,
+// in the world, and the member's place in the relative map.
+struct PriorLine {
+  Eigen::Vector2d seen_point = Eigen::Vector2d::Zero();
+  Placement member;
+  double length = 0.0;  // m, the member's length (RltPlane::Length)
+};
+
+// A group's prior (§II.D): a placement, and the lines of the members known by more than their
+// orientation as seen around when the group was made, which decide every direction they span.
+struct Prior {
+  geometry::Pose2 pose;
+  std::vector<PriorLine> lines;
+};
+
+// The pose estimated at `iteration`, or the start pose when there is none.
+geometry::Pose2 PoseAt(const MapperState& state, int64_t iteration, const MapperOptions& options);
+
+// Member `id` of group `g`, known by its orientation only, as its sightings from poses the walls
+// fixed agree on its line, kept in the group. One sighting does not place it (§II.A end): a wall
+// seen edge-on through a door, over 0.1 to 0.5 m, is fitted up to 6 degrees off, and its first
+// sighting, 1.6 degrees off, left it 1.4 degrees off on the map for good. Its orientation is the
+// mean of theirs weighted by how well each fit fixes it (OrientationWeight, as localisation
+// weighs them), its line through the mean of their middles weighted by how well each fixes its
+// offset. Also the sightings since the group was made: a member that joined later has none
+// before (placing a wall's line from a pose is §II.A's "transformed using current position").
+// Falls back to the sighting when the group was made when fewer than two agree.
+SeenWall LineWhenMade(MapperState& state, size_t g, int64_t id, const MapperOptions& options);
+
+// Were the samples at end `ref` of `seen` further apart than the end's own noise (2 sigma,
+// LearnedFrustum::kEdgeNoise)? The last sample on the wall is then centimetres short of the end.
+bool CoarselySampled(const MapperState& state, const SeenWall& seen, int ref);
+
+// PriorPlacement, with its members' lines as seen to decide the directions they span. A wall's
+// line is fitted to all its points, while an end is where the sensor's last ray met the wall,
+// short of it by up to the rays' spacing along the wall, which grows as they graze it (§II.C).
+// PriorPlacement's placement comes from one reference end, so across the walls it carried that
+// end's sampling error, or its sighting's heading error times the end's distance from them: a
+// pilaster's group on loop_other_sensor was put 4 cm, then 8 cm, along the hallway, where the
+// pilaster's face, seen square on, put it within 2 mm. The basis's line alone left the other
+// direction to an end: an office's last room, linked to the rooms before by orientation only,
+// moved 8 cm across its outer wall when its basis changed from that wall to the partition
+// beside it, whose end, seen far off, was sampled short.
+Prior PriorWithMemberLines(MapperState& state, size_t g, const MapperOptions& options);
+
+}  // namespace relplane::mapper

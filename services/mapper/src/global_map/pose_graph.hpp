@@ -1,0 +1,34 @@
+#pragma once
+// Soft-linked groups (the paper's future work, §V): instead of chaining each group hard to the
+// global map through its link planes, the groups are nodes of a graph of relative transforms.
+// Two groups that hold the same rltplane are tied by it: the plane's placement in each group's
+// relative map must agree in the world (orientation, line and, where both know it, the static
+// edge). Consecutive groups give the chain; a rltplane re-seen after a loop (§II.A end
+// backtracking) ties the closing group to an old one. Least squares over the group basis poses
+// spreads the error a closed loop reveals over the whole loop, and a plane removed from a group
+// only removes one tie: the other ties and a weak prior keep the group placed.
+
+#include <cstdint>
+
+#include "relplane/mapper/options.hpp"
+#include "state.hpp"
+
+namespace relplane::mapper {
+
+// Ties of group `g` to earlier groups through shared rltplanes that skip at least `min_span`
+// groups: loop closures. Counted with the weight of what the two placements know, so the sum
+// over the groups grows both when a loop closes and when a closing tie learns more.
+int GroupLoopEvidence(const MapperState& state, size_t g, int min_span);
+
+struct PoseGraphResult {
+  int iterations = 0;
+  int ties = 0;
+  double cost_before = 0.0;  // sum of squared normalised residuals
+  double cost_after = 0.0;
+};
+
+// Gauss-Newton over all group placements (world <- group frame), starting from the current
+// ones; group 0 stays where it is (anchored at the start pose, §II.D).
+PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptions& options);
+
+}  // namespace relplane::mapper

@@ -1,0 +1,83 @@
+#include "localisation/localiser.hpp"
+
+#include "global_map/global_map.hpp"
+
+namespace relplane::mapper {
+
+Localiser::Localiser(const MapperOptions& options)
+    : options_(options.localisation),
+      max_coast_(options.motion.max_coast),
+      start_{options.start_pose.x, options.start_pose.y, options.start_pose.yaw} {}
+
+std::vector<Sighting> Localiser::Sightings(const LocaliserFrame& frame, const MapperState& state,
+                                           bool initializing) const {
+  std::vector<Sighting> sightings;
+  for (int64_t id : *frame.visible) {
+    const RltPlane* plane = state.Plane(id);
+    if (plane == nullptr || plane->LastSeen() != frame.iteration) continue;
+    if (!initializing) {
+      auto it = state.global.find(id);
+      if (it != state.global.end()) sightings.push_back({&plane->Latest(), plane, it->second});
+    } else if (plane->FirstSeen() == state.first_iteration) {
+      // Before the first group: the walls' lines as first seen from the start pose.
+      sightings.push_back(
+          {&plane->Latest(), plane, PlacementOf(plane->Observations().front(), start_, -1)});
+    }
+  }
+  return sightings;
+}
+
+PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const MapperState& state,
+                                 const LearnedFrustum& frustum, const MotionModel& motion) {
+  const int64_t iteration = frame.iteration;
+  const bool initializing = state.global.empty();
+  std::vector<Sighting> sightings = Sightings(frame, state, initializing);
+  const bool motion_known = frame.motion.known;
+  const std::set<int64_t>& fixed = state.trajectory.fixed;
+  const int predicted_for =
+      motion_known && !fixed.empty() ? static_cast<int>(iteration - *fixed.rbegin()) : 0;
+  bool ends_seen = false;
+  auto localise = [&](const geometry::Pose2& previous) {
+    PoseEstimate est = mapper::Localise(sightings, previous, frustum, options_, held_,
+                                        predicted_for);
+    if (est.status != PoseStatus::kMotionModel || motion_known || ends_seen) return est;
+    // The walls leave a direction open and the motion is not known (the start, moving off
+    // after a turn on the spot; not while turning): the wall ends seen from poses the walls fixed
+    // may show the motion along it (§II.E). Not where the motion is known: an end seen from
+    // another place is off along its wall by centimetres, which the learnt velocity is not.
+    // Looked up only then, as it goes through every kept observation of the walls in view.
+    ends_seen = true;
+    for (Sighting& x : sightings) {
+      for (int e = 0; e < 2; ++e) {
+        const SeenWall seen = EndSeenFromFixedPoses(state, *x.plane, e);
+        x.end_seen[e] = seen.valid;
+        if (seen.valid) x.end[e] = seen.edge[e];
+      }
+    }
+    return mapper::Localise(sightings, previous, frustum, options_, held_);
+  };
+  PoseEstimate estimate = localise(frame.motion.predicted);
+  if (frame.previous_iteration >= 0 &&
+      motion.Turning(frame.previous_pose, estimate.pose, iteration - frame.previous_iteration,
+                     estimate.yaw_sigma)) {
+    // The turn starts now: the sensor did not walk on after all.
+    estimate = localise(frame.previous_pose);
+  }
+  if (!initializing && estimate.planes > 0) last_walled_ = iteration;
+  if (estimate.status == PoseStatus::kLost && sightings.empty() && !initializing &&
+      last_walled_ >= 0 && iteration - last_walled_ <= max_coast_) {
+    // No mapped wall in view for a moment (a wall's two pieces beside a door reported as one,
+    // registered to neither): the pose solver kept the pose it started from, the motion
+    // model's (§II.E). That is a pose, not LOST; not where walls were in view and disagreed,
+    // nor for long.
+    estimate.status = PoseStatus::kMotionModel;
+  }
+  const bool held =
+      !motion_known && estimate.status == PoseStatus::kMotionModel && !estimate.end_moved;
+  held_ = held ? held_ + 1 : 0;
+  if (initializing) estimate.status = PoseStatus::kInitializing;
+  if (state.first_iteration == iteration) estimate.pose = frame.previous_pose;
+  return estimate;
+}
+
+}  // namespace relplane::mapper

@@ -1,0 +1,51 @@
+#pragma once
+// §II.D the iteration's pose from the walls in view against the global map, with the §II.E
+// motion model where they leave a direction open; before the first group, the walls as first
+// seen from the start pose.
+
+#include <cstdint>
+#include <vector>
+
+#include "localisation/frustum.hpp"
+#include "localisation/pose_solver.hpp"
+#include "motion/motion_model.hpp"
+#include "relplane/mapper/options.hpp"
+#include "relplane/mapper/types.hpp"
+#include "state.hpp"
+
+namespace relplane::mapper {
+
+// What the localiser is given of the iteration (it owns none of it).
+struct LocaliserFrame {
+  int64_t iteration = 0;
+  int64_t previous_iteration = -1;  // the iteration before, -1 at the first
+  geometry::Pose2 previous_pose;    // its pose (the start pose at the first)
+  Motion motion;                    // the motion model's prediction for this iteration
+  const std::vector<int64_t>* visible = nullptr;  // rltplanes seen now, sorted
+};
+
+class Localiser {
+ public:
+  explicit Localiser(const MapperOptions& options);
+
+  PoseEstimate Localise(const LocaliserFrame& frame, const MapperState& state,
+                        const LearnedFrustum& frustum, const MotionModel& motion);
+
+  // Iterations in a row whose position was held still: no motion known, the walls leaving the
+  // heading open and no wall end moving it (the pose solver's `held`).
+  int Held() const { return held_; }
+
+ private:
+  // The walls in view that the map places (or, before the first group, that were seen from the
+  // start pose), as sightings for the pose solver.
+  std::vector<Sighting> Sightings(const LocaliserFrame& frame, const MapperState& state,
+                                  bool initializing) const;
+
+  LocalisationOptions options_;
+  int max_coast_;
+  geometry::Pose2 start_;
+  int held_ = 0;
+  int64_t last_walled_ = -1;  // the last iteration whose pose mapped walls placed
+};
+
+}  // namespace relplane::mapper

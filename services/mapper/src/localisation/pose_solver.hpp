@@ -1,0 +1,58 @@
+#pragma once
+// §II.D the sensor pose from the walls in view against where the map has them, and §II.E the
+// motion model when they leave a direction open.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "localisation/frustum.hpp"
+#include "plane_store/rltplane.hpp"
+#include "relplane/common/geometry.hpp"
+#include "relplane/mapper/options.hpp"
+#include "relplane/mapper/types.hpp"
+#include "state.hpp"
+
+namespace relplane::mapper {
+
+// One observation of a mapped wall: what is seen now and where the map has it.
+struct Sighting {
+  const Observation* obs = nullptr;
+  const RltPlane* plane = nullptr;
+  Placement world;
+  // Where each end of the wall stood when seen uncut from poses the walls fixed (the median of
+  // those sightings): for the §II.E motion model, a wall end the map does not place yet.
+  bool end_seen[2] = {false, false};
+  Eigen::Vector2d end[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+};
+
+// Information (smallest eigenvalue of the sum of n n^T over unit wall normals) below which
+// walls leave a direction open: lines within ~11 degrees of parallel.
+constexpr double kOpenInformation = 0.02;
+
+// Least squares a x = b for a position, with `previous` as a weak prior (weight `prior_weight`,
+// applied when the smallest information is below `min_information`). Along a direction the
+// equations leave open (walls within ~11 degrees of parallel) the previous position is kept as
+// it is: their lines' millimetre disagreements would otherwise move it by centimetres, through
+// the slight angle between them, every time it is solved.
+Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& b,
+                               const Eigen::Vector2d& previous, double prior_weight,
+                               double min_information);
+
+// Solves the sensor pose: yaw from the mean orientation difference (weighted by
+// OrientationSigma, so a short noisy wall such as a door jamb does not turn the heading),
+// position by least squares over the walls' lines (one equation each: the middle of the part in
+// view lies on the mapped line, where the fit is good) and their static edges
+// seen now (one more each, along the wall; with the motion known, weighed against `previous`
+// there), with `previous` as a weak prior elsewhere. With a single
+// wall, or walls that leave the position underdetermined, the result is the motion model
+// (§II.E): the wall stays where the map has it, the unobserved direction keeps its previous
+// value, and a mapped wall end seen at its predicted place pins the position along the wall.
+// `held`: the iterations in a row before this one in which no motion was known and no wall end
+// moved the position (`end_moved`): the sensor may have moved on a step in each.
+// `predicted_for`: where `previous` is a learnt velocity's prediction, the iterations it has
+// carried the position since the walls last fixed it; 0 where no motion is known.
+PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
+                      const LearnedFrustum& frustum, const LocalisationOptions& options,
+                      int held = 0, int predicted_for = 0);
+
+}  // namespace relplane::mapper

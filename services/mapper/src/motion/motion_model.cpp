@@ -1,0 +1,113 @@
+#include "motion/motion_model.hpp"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <vector>
+
+namespace relplane::mapper {
+
+bool MotionModel::Turning(const geometry::Pose2& from, const geometry::Pose2& to,
+                          int64_t iterations, double yaw_sigma) const {
+  return std::abs(std::remainder(to.yaw - from.yaw, 2.0 * M_PI)) >
+         options_.turn_rate * static_cast<double>(iterations) + 2.0 * yaw_sigma;
+}
+
+bool MotionModel::LearningStretch(const Trajectory& trajectory, const geometry::Pose2& last,
+                                  int64_t* i0_out, int64_t* i1_out) const {
+  // A fixed pose or two after a long spell of the motion model is no stretch, and must not make
+  // the velocity unknown: the stretch before it still tells it, as long as the heading has not
+  // turned since (moving off after a turn on the spot, the motion is not known).
+  const std::set<int64_t>& fixed = trajectory.fixed;
+  const auto& poses = trajectory.poses;
+  int64_t i1 = *fixed.rbegin(), i0 = i1;
+  for (int stretch = 0;; ++stretch) {
+    i0 = *fixed.lower_bound(i1 - options_.window);
+    auto p0 = poses.find(i0), p1 = poses.find(i1);
+    if (p0 == poses.end() || p1 == poses.end()) return false;
+    if (stretch > 0 && Turning(p1->second, last, options_.min_span)) return false;
+    // Fixed poses must be consecutive enough to be one stretch of motion.
+    const auto in_stretch =
+        static_cast<int64_t>(std::distance(fixed.lower_bound(i0), fixed.upper_bound(i1)));
+    if (i1 - i0 >= options_.min_span && in_stretch >= (i1 - i0) / 2) break;
+    const auto first = fixed.find(i0);
+    if (first == fixed.begin() || stretch + 1 >= options_.max_stretches) return false;
+    i1 = *std::prev(first);
+  }
+  *i0_out = i0;
+  *i1_out = i1;
+  return true;
+}
+
+bool MotionModel::MedianStep(const Trajectory& trajectory, int64_t i0, int64_t i1,
+                             double* step) const {
+  // The median of the steps between consecutive fixed poses, not the way from the first to the
+  // last: a fixed pose that the walls set right is not motion.
+  const std::set<int64_t>& fixed = trajectory.fixed;
+  const auto& poses = trajectory.poses;
+  std::vector<double> steps;
+  for (auto k = fixed.lower_bound(i0); k != fixed.end() && *k < i1; ++k) {
+    const int64_t j = *std::next(k);
+    auto a = poses.find(*k), b = poses.find(j);
+    if (j - *k > 2 || a == poses.end() || b == poses.end()) continue;
+    const Eigen::Vector2d d = b->second.Rotation().inverse() *
+                              (b->second.Translation() - a->second.Translation()) /
+                              static_cast<double>(j - *k);
+    steps.push_back(d.x());
+  }
+  if (steps.empty()) return false;
+  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+  *step = steps[steps.size() / 2];
+  return true;
+}
+
+bool MotionModel::TurningOnTheSpot(const Trajectory& trajectory, const geometry::Pose2& last,
+                                   int64_t last_iteration) const {
+  // A heading from short walls alone wobbles back and forth by more than a turn's step, but its
+  // wobbles do not add up: the turn must show over the last two iterations as well.
+  const auto& poses = trajectory.poses;
+  auto before = poses.lower_bound(last_iteration - 1);
+  if (before == poses.end() || before->first >= last_iteration ||
+      !Turning(before->second, last, last_iteration - before->first)) {
+    return false;
+  }
+  auto earlier = poses.lower_bound(before->first - 1);
+  return earlier == poses.end() || earlier->first >= before->first ||
+         Turning(earlier->second, last, last_iteration - earlier->first);
+}
+
+Motion MotionModel::Predict(const Trajectory& trajectory, const geometry::Pose2& last,
+                            int64_t last_iteration, int64_t iteration) const {
+  // Constant velocity in the sensor's frame, learnt from the poses the walls fixed in every
+  // direction: where they leave one open (a hallway between door frames) the position along it
+  // moves on instead of standing still as the motion model alone would.
+  Motion out{last, false};
+  if (trajectory.fixed.empty() || last_iteration < 0 ||
+      iteration - last_iteration > options_.max_gap) {
+    return out;
+  }
+  int64_t i0 = 0, i1 = 0;
+  double median = 0.0;
+  if (!LearningStretch(trajectory, last, &i0, &i1)) return out;
+  if (!MedianStep(trajectory, i0, i1, &median)) return out;
+  // A span of turning on the spot learns a velocity of nought, which says nothing of how the
+  // sensor moves off once the turn ends (the paths' corners).
+  out.known =
+      !Turning(trajectory.poses.at(i0), trajectory.poses.at(i1), i1 - i0);
+  // Only the part along the heading: the platform drives forwards (the paper's robot, the
+  // simulator's paths), and a sideways part is the noise of the fixed poses, which would walk
+  // the position off along an open direction.
+  const Eigen::Vector2d step(std::clamp(median, -max_step_, max_step_), 0.0);
+  // Turning on the spot, standing still is the motion.
+  if (TurningOnTheSpot(trajectory, last, last_iteration)) {
+    out.known = true;
+    return out;
+  }
+  const double frames = static_cast<double>(iteration - last_iteration);
+  const Eigen::Vector2d moved = last.Translation() + last.Rotation() * step * frames;
+  out.predicted = {moved.x(), moved.y(), last.yaw};
+  return out;
+}
+
+}  // namespace relplane::mapper

@@ -1,0 +1,53 @@
+#pragma once
+// §II.E the motion model: where the walls leave a direction open, the position along it moves on
+// at a constant velocity learnt from the poses the walls fixed, or stands still while the sensor
+// turns on the spot.
+
+#include <cstdint>
+
+#include "motion/trajectory.hpp"
+#include "relplane/common/geometry.hpp"
+#include "relplane/mapper/options.hpp"
+
+namespace relplane::mapper {
+
+struct Motion {
+  geometry::Pose2 predicted;  // the last pose moved on at the learnt velocity
+  // Whether the motion is known: a velocity learnt from a stretch of motion (not a turn on the
+  // spot), or turning on the spot now (standing still).
+  bool known = false;
+};
+
+class MotionModel {
+ public:
+  // `max_step`: the farthest the platform moves in an iteration (LocalisationOptions::max_step).
+  MotionModel(const MotionOptions& options, double max_step)
+      : options_(options), max_step_(max_step) {}
+
+  // The pose at `iteration`, from `last`, the pose of `last_iteration` (-1: none yet), and the
+  // poses the walls fixed in `trajectory`.
+  Motion Predict(const Trajectory& trajectory, const geometry::Pose2& last,
+                 int64_t last_iteration, int64_t iteration) const;
+
+  // Turning on the spot (the paths' corners): the heading is seen whatever the walls leave open,
+  // and a sensor turning faster than MotionOptions::turn_rate is taken not to move on; faster by
+  // more than twice the heading's own error (`yaw_sigma`, PoseEstimate::yaw_sigma), so that a
+  // heading from a door jamb alone, wobbling frame to frame, does not pass for a turn.
+  bool Turning(const geometry::Pose2& from, const geometry::Pose2& to, int64_t iterations,
+               double yaw_sigma = 0.0) const;
+
+ private:
+  // The latest stretch of fixed poses long enough to learn a velocity from: [*i0, *i1].
+  bool LearningStretch(const Trajectory& trajectory, const geometry::Pose2& last, int64_t* i0,
+                       int64_t* i1) const;
+  // The median step along the heading between consecutive fixed poses in [i0, i1].
+  bool MedianStep(const Trajectory& trajectory, int64_t i0, int64_t i1, double* step) const;
+  // The heading turned over the last iteration and over the last two.
+  bool TurningOnTheSpot(const Trajectory& trajectory, const geometry::Pose2& last,
+                        int64_t last_iteration) const;
+
+  MotionOptions options_;
+  double max_step_;
+};
+
+}  // namespace relplane::mapper

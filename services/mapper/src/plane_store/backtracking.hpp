@@ -1,0 +1,18 @@
+#pragma once
+// §II.A end: backtracking and closing the loop. A plane that matches no recent rltplane is
+// transformed with the current position and compared to the global map before it becomes a new
+// rltplane; on a match its observation joins the mapped rltplane.
+
+#include <set>
+
+#include "relplane/common/geometry.hpp"
+#include "relplane/mapper/options.hpp"
+#include "state.hpp"
+
+namespace relplane::mapper {
+
+// The mapped rltplane `obs` (seen from `pose`) matches, or -1. Rltplanes in `taken` are skipped.
+int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const MapperState& state,
+                    const std::set<int64_t>& taken, const BacktrackOptions& options);
+
+}  // namespace relplane::mapper

@@ -1,0 +1,43 @@
+#pragma once
+// §II.A the registration step: each plane of the iteration matched to an rltplane (the latest
+// untransformed sighting, RegisterObservations), else to the global map from the pose the matched
+// walls give (backtracking, MatchGlobal), else made a new rltplane; a re-seen old wall notes a
+// loop closing (global_map/loop_closure.hpp).
+
+#include <cstdint>
+#include <vector>
+
+#include "global_map/loop_closure.hpp"
+#include "localisation/frustum.hpp"
+#include "motion/motion_model.hpp"
+#include "plane_store/observation.hpp"
+#include "relplane/mapper/options.hpp"
+#include "state.hpp"
+
+namespace relplane::mapper {
+
+// What registration is given of the iteration.
+struct RegistrationFrame {
+  int64_t iteration = 0;
+  int64_t previous_iteration = -1;  // the iteration before, -1 at the first
+  geometry::Pose2 previous_pose;    // its pose
+  Motion motion;                    // the motion model's prediction for this iteration
+  int held = 0;                     // Localiser::Held() before this iteration
+};
+
+struct Registered {
+  std::vector<int64_t> visible;  // the rltplanes seen now, sorted
+  ClosingLoop loop;              // a loop closing at this iteration, if any
+};
+
+// Adds the observations (consumed) to the plane store: state.planes, ungrouped, recent, next_id.
+Registered RegisterPlanes(const RegistrationFrame& frame, std::vector<Observation>& observations,
+                          const LearnedFrustum& frustum, const MotionModel& motion,
+                          const MapperOptions& options, MapperState& state);
+
+// Each plane seen now keeps the pose it was last seen from, and its first sighting from a known
+// pose (§II.D: a group is placed from its members' sightings).
+void NoteSightingPose(const std::vector<int64_t>& visible, const geometry::Pose2& pose,
+                      MapperState& state);
+
+}  // namespace relplane::mapper

@@ -1,0 +1,16 @@
+#pragma once
+// §II.C: an edge cut by the view is never a static edge, and the view is learnt as the sensor
+// reports (LearnedFrustum): a wall's far end at the range creeps along with the sensor, so the
+// sightings before the range was learnt agree with it and it passed for the wall's end.
+
+#include "localisation/frustum.hpp"
+#include "state.hpp"
+
+namespace relplane::mapper {
+
+// Marks the stored edges `frustum` now finds cut that were judged uncut before it knew its range
+// limit, with the sightings kept from them (a plane's first, a group's when made and from fixed
+// poses), and has the groups holding them built again. Returns how many edges it marked.
+int MarkViewCuts(const LearnedFrustum& frustum, MapperState& state);
+
+}  // namespace relplane::mapper
