@@ -17,6 +17,7 @@ constexpr size_t kHeaderBytes = 8;           // length + CRC
 constexpr uint32_t kMaxPayload = 64u << 20;  // far above any real plane set
 constexpr uint32_t kMaxPlanes = 1u << 16;
 constexpr uint32_t kMaxVertices = 1u << 16;
+constexpr uint32_t kOdometryTag = 0x4F444F31u;  // "ODO1": an odometry block follows the planes
 
 const std::array<uint32_t, 256>& CrcTable() {
   static const std::array<uint32_t, 256> table = [] {
@@ -105,6 +106,24 @@ bool ParsePayload(const uint8_t* data, size_t size, JournalRecord* record) {
     plane.support = static_cast<int>(support);
     record->planes.push_back(std::move(plane));
   }
+  record->odometry.reset();
+  if (in.Left() == 0) return true;
+  uint32_t tag = 0, lost = 0;
+  if (!in.U32(&tag) || tag != kOdometryTag) return false;
+  OdometryIncrement odometry;
+  uint64_t from = 0, to = 0;
+  if (!in.F64(&odometry.motion.x) || !in.F64(&odometry.motion.y) ||
+      !in.F64(&odometry.motion.yaw)) {
+    return false;
+  }
+  for (int i = 0; i < 9; ++i) {
+    if (!in.F64(&odometry.covariance(i / 3, i % 3))) return false;
+  }
+  if (!in.U64(&from) || !in.U64(&to) || !in.U32(&lost) || lost > 1) return false;
+  odometry.from_utime = static_cast<int64_t>(from);
+  odometry.to_utime = static_cast<int64_t>(to);
+  odometry.readings_lost = lost == 1;
+  record->odometry = odometry;
   return in.Left() == 0;
 }
 
@@ -129,6 +148,17 @@ std::vector<uint8_t> EncodeRecord(const JournalRecord& record) {
     for (const Eigen::Vector3d& v : plane.vertices) payload.Vec(v);
     payload.U32(static_cast<uint32_t>(plane.support));
     payload.F64(plane.rms);
+  }
+  if (record.odometry) {
+    const OdometryIncrement& odometry = *record.odometry;
+    payload.U32(kOdometryTag);
+    payload.F64(odometry.motion.x);
+    payload.F64(odometry.motion.y);
+    payload.F64(odometry.motion.yaw);
+    for (int i = 0; i < 9; ++i) payload.F64(odometry.covariance(i / 3, i % 3));
+    payload.U64(static_cast<uint64_t>(odometry.from_utime));
+    payload.U64(static_cast<uint64_t>(odometry.to_utime));
+    payload.U32(odometry.readings_lost ? 1u : 0u);
   }
   Out framed;
   framed.U32(static_cast<uint32_t>(payload.bytes.size()));

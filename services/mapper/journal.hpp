@@ -1,17 +1,21 @@
 #pragma once
 // The mapper's checkpoint (issue 8): the mapper library is deterministic in its input, so its
 // state is the plane sets it processed. Each one is appended to a journal file as a record
-//   [u32 payload length][u32 CRC-32 of the payload][payload: iteration, planes]
-// (little-endian), in one write, so a kill -9 leaves at most one torn record at the end. On
+//   [u32 payload length][u32 CRC-32 of the payload][payload: iteration, planes, odometry]
+// (little-endian), in one write, so a kill -9 leaves at most one torn record at the end. The
+// odometry block is there only when the plane set came with wheel odometry, so journals written
+// before odometry existed read as they are. On
 // start the journal is replayed through a fresh Mapper; a torn or corrupt tail is cut off.
 
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "relplane/mapper/odometry.hpp"
 #include "relplane/mapper/types.hpp"
 
 namespace relplane::mapper {
@@ -19,6 +23,7 @@ namespace relplane::mapper {
 struct JournalRecord {
   int64_t iteration = 0;
   std::vector<PlaneInput> planes;
+  std::optional<OdometryIncrement> odometry;  // what Mapper::Process took with the planes
 };
 
 // CRC-32 (IEEE 802.3, reflected polynomial 0xEDB88320), as zlib's crc32().

@@ -114,7 +114,9 @@ MapperOptions ReadMapperOptions(Reader& r) {
   mo.Read("max_stretches", &o.motion.max_stretches);
   mo.Read("max_coast", &o.motion.max_coast);
   mo.Read("pose_history", &o.motion.pose_history);
+  mo.Read("odometry_drift", &o.motion.odometry_drift);
   Positive(mo, "turn_rate", o.motion.turn_rate);
+  if (!(o.motion.odometry_drift >= 0.0)) mo.Fail("odometry_drift", "must be 0 or more");
   if (o.motion.min_span < 1) mo.Fail("min_span", "must be at least 1");
   if (o.motion.max_stretches < 1) mo.Fail("max_stretches", "must be at least 1");
   if (o.motion.pose_history < o.motion.max_gap + o.motion.window) {

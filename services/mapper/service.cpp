@@ -49,14 +49,15 @@ void MapperService::OnPlanes(const plane_set_t& msg) {
   }
   if (!stats_.AcceptSeq(msg.seq)) return;  // repeated or out of order: counted, ignored
   const int64_t t0 = MonotonicMicros();
-  const PoseEstimate estimate = mapper_.Process(msg.seq, planes, odometry_.TakeUntil(msg.utime));
+  const std::optional<OdometryIncrement> odometry = odometry_.TakeUntil(msg.utime);
+  const PoseEstimate estimate = mapper_.Process(msg.seq, planes, odometry);
   stats_.Processed(static_cast<double>(MonotonicMicros() - t0) / 1000.0);
   const Observability observability = ObservabilityOf(estimate);
   bus::Publish(bus_, "POSE", ToPoseMessage(estimate, observability.covariance, mapper_.Height(),
                                            msg.utime, msg.seq));
   // After Process: an input that crashes the mapper is not replayed into the next crash. After
   // POSE: the journal write stays off the pose's latency.
-  Journal(msg.seq, std::move(planes));
+  Journal(msg.seq, std::move(planes), odometry);
   if (mapper_.TakeMapChanged()) map_pending_ = true;
   last_utime_ = msg.utime;
   last_seq_ = msg.seq;
@@ -93,7 +94,7 @@ bool MapperService::Resume(const std::string& path) {
   if (!journal.records.empty()) {
     const int64_t t0 = MonotonicMicros();
     for (const JournalRecord& record : journal.records) {
-      mapper_.Process(record.iteration, record.planes);
+      mapper_.Process(record.iteration, record.planes, record.odometry);
     }
     const double seconds = static_cast<double>(MonotonicMicros() - t0) / 1e6;
     last_seq_ = journal.records.back().iteration;
@@ -113,10 +114,11 @@ bool MapperService::Resume(const std::string& path) {
   return true;
 }
 
-void MapperService::Journal(int64_t seq, std::vector<PlaneInput> planes) {
+void MapperService::Journal(int64_t seq, std::vector<PlaneInput> planes,
+                            const std::optional<OdometryIncrement>& odometry) {
   if (!journal_.IsOpen()) return;
   std::string error;
-  const JournalRecord record{seq, std::move(planes)};
+  const JournalRecord record{seq, std::move(planes), odometry};
   if (!journal_.Append(record, &error)) {
     stats_.Rejected("checkpoint: " + error);  // counted and said; mapping goes on
   }

@@ -33,7 +33,8 @@ class MapperService {
   ServiceStats& Stats() { return stats_; }
 
  private:
-  void Journal(int64_t seq, std::vector<PlaneInput> planes);
+  void Journal(int64_t seq, std::vector<PlaneInput> planes,
+               const std::optional<OdometryIncrement>& odometry);
   // MAP at most every kMapPeriodUs of simulated time, and at once when time went backwards.
   bool MapDue(int64_t utime) const;
 

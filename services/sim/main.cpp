@@ -17,6 +17,7 @@
 #include "relplane/common/service_runtime.hpp"
 #include "relplane/common/service_start.hpp"
 #include "relplane/common/service_stats.hpp"
+#include "relplane/sim/odometry_stream.hpp"
 #include "relplane/sim/simulation.hpp"
 
 namespace {
@@ -54,8 +55,7 @@ int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double 
   const int64_t start = MonotonicMicros();
   int64_t next_second = start;
   int64_t next_progress = start + 5000000;
-  sim::WheelOdometry odometry(options.odometry, simulation.PlanarPose(0));
-  int64_t odometry_next = 0;  // the next reading's index, at its own rate
+  sim::OdometryStream odometry(options.odometry, simulation);
   int64_t k = 0;
   for (; k < total && !StopRequested(); ++k) {
     if (rate > 0.0) SleepUntil(start + static_cast<int64_t>(static_cast<double>(k) * 1e6 / rate));
@@ -70,15 +70,8 @@ int Run(sim::Simulation& simulation, const sim::ServiceOptions& options, double 
     }
     // Wheel odometry up to this iteration's time, before its cloud: a mapper gets the motion
     // before the planes it goes with.
-    if (options.odometry.enabled) {
-      const double odometry_rate = options.odometry.rate_hz > 0.0 ? options.odometry.rate_hz
-                                                                  : options.sim.rate_hz;
-      const double t_k = static_cast<double>(k) / options.sim.rate_hz;
-      for (double t; (t = static_cast<double>(odometry_next) / odometry_rate) <= t_k + 1e-9;
-           ++odometry_next) {
-        const sim::OdometryReading reading = odometry.Step(simulation.PlanarPoseAt(t));
-        Publish(bus, stats, "ODOMETRY", sim::ToOdometry(reading, std::llround(t * 1e6)));
-      }
+    for (const sim::TimedOdometry& due : odometry.UpTo(k)) {
+      Publish(bus, stats, "ODOMETRY", sim::ToOdometry(due.reading, due.utime));
     }
     const int64_t t0 = MonotonicMicros();
     const sim::Scan scan = simulation.Frame(k);

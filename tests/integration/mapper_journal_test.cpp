@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include "journal.hpp"
 #include "relplane/mapper/mapper.hpp"
@@ -60,6 +61,28 @@ void ExpectSame(const JournalRecord& a, const JournalRecord& b) {
     EXPECT_EQ(a.planes[i].support, b.planes[i].support);
     EXPECT_EQ(a.planes[i].rms, b.planes[i].rms);
   }
+  ASSERT_EQ(a.odometry.has_value(), b.odometry.has_value());
+  if (a.odometry) {
+    EXPECT_EQ(a.odometry->motion.x, b.odometry->motion.x);
+    EXPECT_EQ(a.odometry->motion.y, b.odometry->motion.y);
+    EXPECT_EQ(a.odometry->motion.yaw, b.odometry->motion.yaw);
+    EXPECT_EQ(a.odometry->covariance, b.odometry->covariance);
+    EXPECT_EQ(a.odometry->from_utime, b.odometry->from_utime);
+    EXPECT_EQ(a.odometry->to_utime, b.odometry->to_utime);
+    EXPECT_EQ(a.odometry->readings_lost, b.odometry->readings_lost);
+  }
+}
+
+// Wheel odometry's motion over frame k's step (0.03 m forwards, a slight turn), as read.
+OdometryIncrement Odometry(int64_t k) {
+  OdometryIncrement o;
+  o.motion = {0.031, -0.0004, 0.0002};
+  o.covariance = Eigen::Matrix3d::Identity() * 1e-6;
+  o.covariance(0, 1) = o.covariance(1, 0) = 2e-7;
+  o.from_utime = (k - 1) * 33333;
+  o.to_utime = k * 33333;
+  o.readings_lost = k % 2 == 0;
+  return o;
 }
 
 TEST(MapperJournal, Crc32MatchesTheStandardCheckValue) {
@@ -76,6 +99,35 @@ TEST(MapperJournal, RoundTrip) {
   EXPECT_EQ(contents.discarded_bytes, 0u);
   ASSERT_EQ(contents.records.size(), 3u);
   for (size_t i = 0; i < records.size(); ++i) ExpectSame(contents.records[i], records[i]);
+}
+
+TEST(MapperJournal, OdometryRoundTripsAndOlderRecordsHaveNone) {
+  std::vector<JournalRecord> records = {Frame(0), Frame(1), Frame(2)};
+  records[1].odometry = Odometry(1);
+  records[2].odometry = Odometry(2);
+  records[2].planes.clear();
+  // A record without odometry is byte for byte what journals held before odometry existed.
+  EXPECT_EQ(EncodeRecord(records[0]).size(), EncodeRecord(Frame(0)).size());
+  const JournalContents contents = ParseJournal(Concat(records));
+  EXPECT_EQ(contents.problem, "");
+  ASSERT_EQ(contents.records.size(), 3u);
+  for (size_t i = 0; i < records.size(); ++i) ExpectSame(contents.records[i], records[i]);
+}
+
+TEST(MapperJournal, UnknownTrailerIsCorruptNotGuessed) {
+  std::vector<uint8_t> bytes = EncodeRecord(Frame(0));
+  // Four bytes after the planes that are not an odometry block, with the CRC made to match.
+  const std::vector<uint8_t> junk = {1, 2, 3, 4};
+  bytes.insert(bytes.end(), junk.begin(), junk.end());
+  const uint32_t length = static_cast<uint32_t>(bytes.size() - 8);
+  const uint32_t crc = Crc32(bytes.data() + 8, length);
+  for (int i = 0; i < 4; ++i) {
+    bytes[i] = static_cast<uint8_t>(length >> (8 * i));
+    bytes[4 + i] = static_cast<uint8_t>(crc >> (8 * i));
+  }
+  const JournalContents contents = ParseJournal(bytes);
+  EXPECT_TRUE(contents.records.empty());
+  EXPECT_NE(contents.problem, "");
 }
 
 TEST(MapperJournal, TornTailIsCutAtEveryLength) {
@@ -146,20 +198,28 @@ TEST(MapperJournal, WriterAppendsAfterTheIntactRecords) {
   EXPECT_TRUE(c.records.empty());
 }
 
-TEST(MapperJournal, ReplayedMapperGoesOnAsTheOriginal) {
+// With and without wheel odometry: a replay must take the odometry the original took.
+class ReplayedMapper : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ReplayedMapper, GoesOnAsTheOriginal) {
+  const bool with_odometry = GetParam();
+  auto odometry = [&](int64_t k) {
+    return with_odometry && k > 0 ? std::optional<OdometryIncrement>(Odometry(k)) : std::nullopt;
+  };
   Mapper original;
   std::vector<JournalRecord> written;
   for (int64_t k = 0; k < 40; ++k) {
     written.push_back(Frame(k));
-    original.Process(k, written.back().planes);
+    written.back().odometry = odometry(k);
+    original.Process(k, written.back().planes, written.back().odometry);
   }
   Mapper replayed;
   for (const JournalRecord& r : ParseJournal(Concat(written)).records) {
-    replayed.Process(r.iteration, r.planes);
+    replayed.Process(r.iteration, r.planes, r.odometry);
   }
   for (int64_t k = 42; k < 60; ++k) {  // a gap, as while the mapper was down
-    const PoseEstimate a = original.Process(k, Frame(k).planes);
-    const PoseEstimate b = replayed.Process(k, Frame(k).planes);
+    const PoseEstimate a = original.Process(k, Frame(k).planes, odometry(k));
+    const PoseEstimate b = replayed.Process(k, Frame(k).planes, odometry(k));
     EXPECT_EQ(a.status, b.status);
     EXPECT_EQ(a.pose.x, b.pose.x) << k;
     EXPECT_EQ(a.pose.y, b.pose.y) << k;
@@ -167,6 +227,11 @@ TEST(MapperJournal, ReplayedMapperGoesOnAsTheOriginal) {
   }
   EXPECT_EQ(original.Map().planes.size(), replayed.Map().planes.size());
 }
+
+INSTANTIATE_TEST_SUITE_P(MapperJournal, ReplayedMapper, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                           return info.param ? "WithOdometry" : "WithoutOdometry";
+                         });
 
 }  // namespace
 }  // namespace relplane::mapper

@@ -273,11 +273,14 @@ World HallwayLoop(double sx, double sy, double width, double recess_spacing) {
 }
 
 RunResult Run(Mapper& mapper, IdealSegmenter& segmenter,
-              const std::vector<geometry::Pose2>& poses) {
+              const std::vector<geometry::Pose2>& poses, const OdometryFn& odometry) {
   RunResult r;
   double sum = 0.0, sum_yaw = 0.0;
   for (size_t k = 0; k < poses.size(); ++k) {
-    const PoseEstimate est = mapper.Process(static_cast<int64_t>(k), segmenter.Planes(poses[k]));
+    const std::optional<OdometryIncrement> increment =
+        odometry && k > 0 ? odometry(k) : std::nullopt;
+    const PoseEstimate est =
+        mapper.Process(static_cast<int64_t>(k), segmenter.Planes(poses[k]), increment);
     const double e = (est.pose.Translation() - poses[k].Translation()).norm();
     sum += e * e;
     const double ey = geometry::WrapAngle(est.pose.yaw - poses[k].yaw);

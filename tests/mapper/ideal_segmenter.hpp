@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -98,9 +100,12 @@ struct RunResult {
   std::string duplicate_ids;  // per duplicated true wall: the mapped ids on it
 };
 
+// Wheel odometry's increment into iteration k (k >= 1), when the run has odometry.
+using OdometryFn = std::function<std::optional<OdometryIncrement>(size_t k)>;
+
 // Runs the mapper over the trajectory and scores it against the world.
 RunResult Run(Mapper& mapper, IdealSegmenter& segmenter,
-              const std::vector<geometry::Pose2>& poses);
+              const std::vector<geometry::Pose2>& poses, const OdometryFn& odometry = nullptr);
 
 std::string Describe(const RunResult& r);
 

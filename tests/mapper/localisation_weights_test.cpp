@@ -252,7 +252,8 @@ struct OneWallEnd {
   }
   // The pose from a prediction at the origin, carried `predicted_for` iterations.
   PoseEstimate From(const LearnedFrustum& frustum, int predicted_for) const {
-    return Localise(sightings, geometry::Pose2{0.0, 0.0, 0.0}, frustum, {}, 0, predicted_for);
+    return Localise(sightings, geometry::Pose2{0.0, 0.0, 0.0}, frustum, {}, 0,
+                    LearntVelocity(predicted_for, LocalisationOptions{}));
   }
   Observation seen, mapped;
   std::vector<RltPlane> planes;
@@ -366,11 +367,12 @@ TEST(Localisation, WithTheMotionKnownAnEndThatAloneFixesThePositionIsWeighedAgai
   ASSERT_LT(frustum.EdgeSpacing(view.left.edge[1], view.left.d), LearnedFrustum::kEdgeNoise);
   const double w = EndWeight(frustum, view.left), prediction = 9.0;  // (3 cm / 1 cm)^2
   const geometry::Pose2 origin{0.0, 0.0, 0.0};
-  const PoseEstimate known = Localise(view.sightings, origin, frustum, {}, 0, 1);
+  const PoseEstimate known = Localise(view.sightings, origin, frustum, {}, 0,
+                                      LearntVelocity(1, LocalisationOptions{}));
   EXPECT_EQ(known.status, PoseStatus::kTracking);
   EXPECT_NEAR(known.pose.x, 0.05 * w / (w + prediction), 1e-4);
   EXPECT_NEAR(known.pose.y, 0.0, 1e-6);
-  const PoseEstimate unknown = Localise(view.sightings, origin, frustum, {}, 0, 0);
+  const PoseEstimate unknown = Localise(view.sightings, origin, frustum, {}, 0, {});
   EXPECT_EQ(unknown.status, PoseStatus::kTracking);
   EXPECT_NEAR(unknown.pose.x, 0.05, 1e-4);
 }
@@ -392,7 +394,7 @@ PoseEstimate FromAnEndSeenBefore(const LearnedFrustum& frustum, double end_x) {
   Sighting sighting{&seen, &planes[0], line};
   sighting.end_seen[far] = true;
   sighting.end[far] = {end_x, 1.0};
-  return Localise({sighting}, geometry::Pose2{0.0, 0.0, 0.0}, frustum, {}, 0, 0);
+  return Localise({sighting}, geometry::Pose2{0.0, 0.0, 0.0}, frustum, {}, 0, {});
 }
 
 // A finely sampled end 2 m ahead shows the motion; one 4.8 m ahead at a grazing angle, sampled

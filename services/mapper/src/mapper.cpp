@@ -42,7 +42,8 @@ Mapper::~Mapper() = default;
 Mapper::Mapper(Mapper&&) noexcept = default;
 Mapper& Mapper::operator=(Mapper&&) noexcept = default;
 
-PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& planes) {
+PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& planes,
+                             const std::optional<OdometryIncrement>& odometry) {
   Steps& s = *steps_;
   MapperState& state = s.state;
   if (iteration <= s.last_iteration) return {s.pose, PoseStatus::kLost, 0};
@@ -50,7 +51,12 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
     state.first_iteration = iteration;
     state.trajectory.Record(iteration, s.pose, true);
   }
-  const Motion motion = s.motion.Predict(state.trajectory, s.pose, s.last_iteration, iteration);
+  // §II.E the motion since the last iteration: wheel odometry's where the robot has it, else
+  // the velocity learnt from the poses the walls fixed.
+  const Motion motion =
+      odometry && s.last_iteration >= 0
+          ? s.motion.Odometry(s.pose, *odometry)
+          : s.motion.Predict(state.trajectory, s.pose, s.last_iteration, iteration);
   const int64_t previous = s.last_iteration;
   s.last_iteration = iteration;
 
@@ -75,8 +81,10 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
       {iteration, previous, s.pose, motion, &visible}, state, s.frustum, s.motion);  // §II.D-E
   AddPoseTie(registered.loop, estimate, options_.graph, state);  // §II.D loop closing
 
+  const bool fixed = estimate.status == PoseStatus::kTracking;
+  state.trajectory.Record(iteration, estimate.pose, fixed);  // §II.E
+  if (fixed) s.motion.Fixed();
   s.pose = estimate.pose;
-  state.trajectory.Record(iteration, s.pose, estimate.status == PoseStatus::kTracking);  // §II.E
   NoteSightingPose(visible, s.pose, state);
   DropOldObservations(state, visible, iteration, options_);  // bounded memory (§II.F)
   state.trajectory.ForgetBefore(iteration - options_.motion.pose_history);

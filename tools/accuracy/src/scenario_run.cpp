@@ -17,8 +17,10 @@
 #include "overrides.hpp"
 #include "relplane/common/options.hpp"
 #include "relplane/mapper/mapper.hpp"
+#include "relplane/mapper/odometry.hpp"
 #include "relplane/mapper/pose_covariance.hpp"
 #include "relplane/segmenter/segmenter.hpp"
+#include "relplane/sim/odometry_stream.hpp"
 #include "relplane/sim/simulation.hpp"
 
 namespace relplane::accuracy {
@@ -94,6 +96,9 @@ RunResult RunScenario(const RunSpec& spec) {
   sim::Simulation simulation(sim_options.sim);
   segmenter::Segmenter segmenter(sections.segmenter.segmenter);
   mapper::Mapper mapper(sections.mapper);
+  // Wheel odometry when the scenario has it, through the messages as ODOMETRY carries it.
+  sim::OdometryStream odometry_stream(sim_options.odometry, simulation);
+  mapper::OdometryIntegrator odometry;
   RunResult r;
   r.kind = ClassifyWorld(simulation);
   std::vector<eval::PoseSample> estimate, truth;
@@ -108,6 +113,14 @@ RunResult RunScenario(const RunSpec& spec) {
     frame.true_y = t.translation().y();
     const Eigen::Vector3d forward = t.rotation() * Eigen::Vector3d::UnitX();
     frame.true_yaw = std::atan2(forward.y(), forward.x());
+    for (const sim::TimedOdometry& due : odometry_stream.UpTo(k)) {
+      mapper::OdometryReading reading;
+      std::string why;
+      if (!mapper::FromOdometry(sim::ToOdometry(due.reading, due.utime), &reading, &why) ||
+          !odometry.Add(reading)) {
+        ++r.rejected_odometry;
+      }
+    }
     // Through the messages, as the services pass them: a refused message is counted and the
     // frame gets no pose, as live.
     const point_cloud_t cloud_msg = sim::ToPointCloud(simulation.Frame(k), k, k);
@@ -129,7 +142,8 @@ RunResult RunScenario(const RunSpec& spec) {
       ++r.rejected_frames;
       continue;
     }
-    const mapper::PoseEstimate pose = mapper.Process(k, planes);
+    const mapper::PoseEstimate pose =
+        mapper.Process(k, planes, odometry.TakeUntil(simulation.Utime(k)));
     frame.status = static_cast<int>(pose.status);
     frame.x = pose.pose.x;
     frame.y = pose.pose.y;

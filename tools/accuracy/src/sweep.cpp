@@ -171,6 +171,9 @@ std::string RunLine(const SweepRun& run) {
                      std::to_string(r.map.missed) + " missed, " +
                      std::to_string(r.motion_model_frames) + " MOTION_MODEL frames";
   if (r.rejected_frames > 0) line += ", " + std::to_string(r.rejected_frames) + " rejected";
+  if (r.rejected_odometry > 0) {
+    line += ", " + std::to_string(r.rejected_odometry) + " odometry readings rejected";
+  }
   if (run.misses.empty()) return line + ": meets the targets";
   line += ": misses (";
   for (size_t i = 0; i < run.misses.size(); ++i) line += (i ? "; " : "") + run.misses[i];
@@ -216,6 +219,7 @@ std::string SweepJson(const std::vector<SweepRun>& runs, const Targets& targets,
     w.Field("frames", r.frames).Field("lost_frames", r.lost_frames);
     w.Field("motion_model_frames", r.motion_model_frames);
     w.Field("rejected_frames", r.rejected_frames);
+    w.Field("rejected_odometry", r.rejected_odometry);
     w.Field("world_kind", r.kind.Label()).Field("unobservable_frames", r.kind.unobservable_frames);
     w.Field("longest_unobservable_s", r.kind.longest_stretch_s);
     w.Field("position_within_3sigma", r.trajectory.consistency.position_within_3sigma);

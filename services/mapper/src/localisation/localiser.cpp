@@ -34,12 +34,17 @@ PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const MapperState&
   std::vector<Sighting> sightings = Sightings(frame, state, initializing);
   const bool motion_known = frame.motion.known;
   const std::set<int64_t>& fixed = state.trajectory.fixed;
-  const int predicted_for =
-      motion_known && !fixed.empty() ? static_cast<int>(iteration - *fixed.rbegin()) : 0;
+  // How far off the prediction may be: odometry says so itself; a learnt velocity drifts with
+  // the iterations since the walls last fixed the position.
+  const Prediction prediction =
+      frame.motion.odometry ? Prediction{true, frame.motion.sigma}
+      : motion_known && !fixed.empty()
+          ? LearntVelocity(static_cast<int>(iteration - *fixed.rbegin()), options_)
+          : Prediction{};
   bool ends_seen = false;
   auto localise = [&](const geometry::Pose2& previous) {
     PoseEstimate est = mapper::Localise(sightings, previous, frustum, options_, held_,
-                                        predicted_for);
+                                        prediction);
     if (est.status != PoseStatus::kMotionModel || motion_known || ends_seen) return est;
     // The walls leave a direction open and the motion is not known (the start, moving off
     // after a turn on the spot; not while turning): the wall ends seen from poses the walls fixed
@@ -57,7 +62,8 @@ PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const MapperState&
     return mapper::Localise(sightings, previous, frustum, options_, held_);
   };
   PoseEstimate estimate = localise(frame.motion.predicted);
-  if (frame.previous_iteration >= 0 &&
+  // Odometry knows whether the sensor moved on while it turned; a learnt velocity does not.
+  if (!frame.motion.odometry && frame.previous_iteration >= 0 &&
       motion.Turning(frame.previous_pose, estimate.pose, iteration - frame.previous_iteration,
                      estimate.yaw_sigma)) {
     // The turn starts now: the sensor did not walk on after all.

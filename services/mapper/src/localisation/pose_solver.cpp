@@ -125,8 +125,8 @@ struct MotionContext {
   const LearnedFrustum& frustum;
   const LocalisationOptions& options;
   int held;
-  int predicted_for;
-  bool motion_known() const { return predicted_for > 0; }
+  Prediction prediction;
+  bool motion_known() const { return prediction.known; }
 };
 
 // §II.E motion model, where the walls leave the direction `open` open: a mapped wall end seen
@@ -161,8 +161,9 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
         if (std::abs(moved) >= options.end_gate) continue;
         // With the motion known the prediction is good to an end's noise and the velocity's
         // drift since the walls last fixed the position: an end further off is not the wall's.
-        const double drift = options.drift_rate * static_cast<double>(m.predicted_for);
-        if (motion_known && std::abs(moved) >= LearnedFrustum::kEdgeNoise + drift) continue;
+        if (motion_known && std::abs(moved) >= LearnedFrustum::kEdgeNoise + m.prediction.sigma) {
+          continue;
+        }
         // With the motion known, an end whose samples land further apart than its noise says
         // less than the learnt velocity: it stands for frames and jumps a column.
         const double spacing = m.frustum.EdgeSpacing(x.obs->edge[e], x.obs->d);
@@ -196,8 +197,7 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
   // noise: the prediction drifts by up to drift_rate an iteration since the walls last fixed
   // the position, a mapped end is good to kEdgeNoise (the lines' unit weight stands for that).
   if (placed_ends > 0) {
-    const double sigma = std::max(options.drift_rate * static_cast<double>(m.predicted_for),
-                                  options.drift_rate);
+    const double sigma = std::max(m.prediction.sigma, options.drift_rate);
     const double w = std::pow(LearnedFrustum::kEdgeNoise / sigma, 2);
     sys->AddPrior(open, open.dot(m.previous.Translation()), w);
   }
@@ -232,8 +232,7 @@ PoseEstimate SolveOnce(const std::vector<Sighting>& sightings, const std::vector
     // The previous pose, fixed by such ends, is good to about a centimetre, and the prediction
     // drifts on from there.
     const Vector2d open = line_eig.eigenvectors().col(0);
-    const double sigma = std::max(options.tracked_prediction,
-                                  options.drift_rate * static_cast<double>(m.predicted_for));
+    const double sigma = std::max(options.tracked_prediction, m.prediction.sigma);
     sys.AddPrior(open, open.dot(m.previous.Translation()),
                  std::pow(LearnedFrustum::kEdgeNoise / sigma, 2));
   }
@@ -317,10 +316,15 @@ Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& 
   return pos;
 }
 
+Prediction LearntVelocity(int iterations, const LocalisationOptions& options) {
+  if (iterations <= 0) return {};
+  return {true, options.drift_rate * static_cast<double>(iterations)};
+}
+
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
                       const LearnedFrustum& frustum, const LocalisationOptions& options, int held,
-                      int predicted_for) {
-  const MotionContext m{previous, frustum, options, held, predicted_for};
+                      const Prediction& prediction) {
+  const MotionContext m{previous, frustum, options, held, prediction};
   PoseEstimate out;
   out.pose = previous;
   std::vector<bool> use(sightings.size(), true);

@@ -25,6 +25,18 @@ struct Sighting {
   Eigen::Vector2d end[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
 };
 
+// What `previous` stands for in the pose solver (§II.E): the last pose held still (not known),
+// or a prediction by a learnt velocity or wheel odometry, good to `sigma` along a direction the
+// walls leave open.
+struct Prediction {
+  bool known = false;
+  double sigma = 0.0;  // m, one sigma
+};
+
+// A learnt velocity's prediction `iterations` after the walls last fixed the position: it drifts
+// by up to LocalisationOptions::drift_rate an iteration. Not known for 0 iterations.
+Prediction LearntVelocity(int iterations, const LocalisationOptions& options);
+
 // Information (smallest eigenvalue of the sum of n n^T over unit wall normals) below which
 // walls leave a direction open: lines within ~11 degrees of parallel.
 constexpr double kOpenInformation = 0.02;
@@ -49,10 +61,10 @@ Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& 
 // value, and a mapped wall end seen at its predicted place pins the position along the wall.
 // `held`: the iterations in a row before this one in which no motion was known and no wall end
 // moved the position (`end_moved`): the sensor may have moved on a step in each.
-// `predicted_for`: where `previous` is a learnt velocity's prediction, the iterations it has
-// carried the position since the walls last fixed it; 0 where no motion is known.
+// `prediction`: where `previous` is the motion model's prediction (a learnt velocity or wheel
+// odometry), how far off it may be by now; unknown where `previous` is the last pose held.
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
                       const LearnedFrustum& frustum, const LocalisationOptions& options,
-                      int held = 0, int predicted_for = 0);
+                      int held = 0, const Prediction& prediction = {});
 
 }  // namespace relplane::mapper

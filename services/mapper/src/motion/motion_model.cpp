@@ -110,4 +110,21 @@ Motion MotionModel::Predict(const Trajectory& trajectory, const geometry::Pose2&
   return out;
 }
 
+Motion MotionModel::Odometry(const geometry::Pose2& last, const OdometryIncrement& increment) {
+  const Eigen::Matrix2d position = increment.covariance.topLeftCorner<2, 2>();
+  if (position.allFinite()) odometry_variance_ += std::max(position.trace(), 0.0);
+  odometry_distance_ += increment.motion.Translation().norm();
+  const double systematic = options_.odometry_drift * odometry_distance_;
+  Motion out;
+  out.predicted = last * increment.motion;
+  out.known = true;
+  out.odometry = true;
+  out.sigma = std::sqrt(odometry_variance_ + systematic * systematic);
+  return out;
+}
+
+void MotionModel::Fixed() {
+  odometry_variance_ = 0.0;
+  odometry_distance_ = 0.0;
+}
 }  // namespace relplane::mapper

@@ -7,15 +7,22 @@
 
 #include "motion/trajectory.hpp"
 #include "relplane/common/geometry.hpp"
+#include "relplane/mapper/odometry.hpp"
 #include "relplane/mapper/options.hpp"
 
 namespace relplane::mapper {
 
 struct Motion {
-  geometry::Pose2 predicted;  // the last pose moved on at the learnt velocity
-  // Whether the motion is known: a velocity learnt from a stretch of motion (not a turn on the
-  // spot), or turning on the spot now (standing still).
+  geometry::Pose2 predicted;  // the last pose moved on at the learnt velocity or by odometry
+  // Whether the motion is known: wheel odometry read it, a velocity was learnt from a stretch
+  // of motion (not a turn on the spot), or the sensor is turning on the spot now (standing
+  // still).
   bool known = false;
+  // Wheel odometry read it: it knows whether the sensor moved on while turning, and `sigma`
+  // (m, one sigma) is how far off it may be by now. A learnt velocity's drift is the pose
+  // solver's (LearntVelocity).
+  bool odometry = false;
+  double sigma = 0.0;
 };
 
 class MotionModel {
@@ -36,6 +43,14 @@ class MotionModel {
   bool Turning(const geometry::Pose2& from, const geometry::Pose2& to, int64_t iterations,
                double yaw_sigma = 0.0) const;
 
+  // Wheel odometry instead of the learnt velocity, when the robot has it (ODOMETRY): `last`
+  // moved on by the motion it read since the previous iteration. Its error accumulates from
+  // the increments' covariance and MotionOptions::odometry_drift of the distance driven, until
+  // the walls fix the position again (Fixed).
+  Motion Odometry(const geometry::Pose2& last, const OdometryIncrement& increment);
+  // The walls fixed the position in every direction (§II.D): odometry's error starts again.
+  void Fixed();
+
  private:
   // The latest stretch of fixed poses long enough to learn a velocity from: [*i0, *i1].
   bool LearningStretch(const Trajectory& trajectory, const geometry::Pose2& last, int64_t* i0,
@@ -48,6 +63,10 @@ class MotionModel {
 
   MotionOptions options_;
   double max_step_;
+  // Since the walls last fixed the position: the odometry increments' position variance
+  // (m^2, the covariances' traces) and the distance they drove (m).
+  double odometry_variance_ = 0.0;
+  double odometry_distance_ = 0.0;
 };
 
 }  // namespace relplane::mapper

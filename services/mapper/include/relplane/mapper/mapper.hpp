@@ -23,13 +23,12 @@ class Mapper {
   Mapper& operator=(Mapper&&) noexcept;
 
   // Processes one plane set; `iteration` must increase (gaps are fine). Returns the pose.
-  PoseEstimate Process(int64_t iteration, const std::vector<PlaneInput>& planes);
-  // The same with wheel odometry's motion since the previous plane set, when ODOMETRY is on
-  // the bus (odometry.hpp). The algorithm does not take it yet: the pose is the planes' alone.
+  // `odometry`: wheel odometry's motion since the previous plane set, when the robot has it
+  // (ODOMETRY, odometry.hpp). It predicts the pose in place of the velocity learnt from the
+  // walls (§II.E), so it decides only what the walls in view leave open; without it the pose is
+  // the planes' alone.
   PoseEstimate Process(int64_t iteration, const std::vector<PlaneInput>& planes,
-                       const std::optional<OdometryIncrement>& /*odometry*/) {
-    return Process(iteration, planes);
-  }
+                       const std::optional<OdometryIncrement>& odometry = std::nullopt);
 
   // True when the map changed since the last call to TakeMapChanged().
   bool TakeMapChanged();

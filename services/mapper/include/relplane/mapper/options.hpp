@@ -110,6 +110,11 @@ struct MotionOptions {
   // wall in view still gets the learnt motion's pose (half a second at 30 Hz)
   int max_coast = 15;
   int pose_history = 2000;  // iterations of poses kept
+  // Wheel odometry (ODOMETRY, optional): one sigma of its error per metre driven on top of the
+  // covariance it reports, which leaves out the systematic errors (wheel radii, track width;
+  // a calibrated robot's are about 1 %). How far an odometry prediction may be off grows with
+  // both since the walls last fixed the position.
+  double odometry_drift = 0.02;
 };
 
 // Soft-linked groups (§V future work): least squares over the group placements at loop closure.

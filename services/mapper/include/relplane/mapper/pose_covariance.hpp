@@ -2,8 +2,8 @@
 // The covariance published with each pose (pose_t.covariance): the observability of what the
 // frame's localisation used (observability.hpp).
 
-#include "relplane/mapper/types.hpp"
 #include "relplane/mapper/observability.hpp"
+#include "relplane/mapper/types.hpp"
 
 namespace relplane::mapper {
 

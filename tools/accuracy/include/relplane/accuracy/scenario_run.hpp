@@ -45,6 +45,7 @@ struct RunResult {
   int64_t lost_frames = 0;          // poses with status LOST
   int64_t motion_model_frames = 0;  // poses with status MOTION_MODEL (§II.E)
   int64_t rejected_frames = 0;      // a conversion refused the message: counted, not mapped
+  int64_t rejected_odometry = 0;    // ODOMETRY readings refused (bad or out of order)
   std::vector<FramePose> poses;     // every frame's
   std::vector<PlaneError> plane_errors;  // with RunSpec::plane_errors: every frame's walls
   // Where each true wall of map.walls stands, seen from above (same order): which wall a run's
