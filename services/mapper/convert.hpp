@@ -22,6 +22,10 @@ bool FromPlaneSet(const plane_set_t& msg, std::vector<PlaneInput>* planes, std::
 // zero quaternion or a covariance that is not symmetric positive semi-definite.
 bool FromOdometry(const odometry_t& msg, OdometryReading* reading, std::string* reason);
 
+// MAP goes out at most once per this much simulated time (utime), when the map changed: the
+// service's cadence, which the pipeline bench's profile of the mapper repeats.
+inline constexpr int64_t kMapPeriodUs = 100000;
+
 pose_t ToPoseMessage(const PoseEstimate& estimate, const Eigen::Matrix3d& covariance, double z,
                      int64_t utime, int64_t seq);
 map_t ToMapMessage(const MapSnapshot& map, int64_t utime, int64_t seq);

@@ -11,8 +11,7 @@
 namespace relplane::mapper {
 namespace {
 
-constexpr double kBudgetMs = 5.0;         // the mapper's share of the 33.3 ms iteration
-constexpr int64_t kMapPeriodUs = 100000;  // MAP at most 10 Hz of simulated time
+constexpr double kBudgetMs = 5.0;  // the mapper's share of the 33.3 ms iteration
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 #include "latency_table.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "relplane/common/service_stats.hpp"
 
@@ -36,6 +37,10 @@ std::vector<double> Between(const std::map<int64_t, int64_t>& from,
 }
 }  // namespace
 
+void LatencyTable::Forget() {
+  for (auto& stage : stamps_) stage.clear();
+}
+
 std::vector<double> LatencyTable::EndToEndMs() const {
   return Between(stamps_[0], stamps_[2]);
 }
@@ -48,6 +53,14 @@ RateResult LatencyTable::Summarise(double rate_hz, double publish_seconds) const
   r.segmenter = bench::Summarise(Between(stamps_[0], stamps_[1]));
   r.mapper = bench::Summarise(Between(stamps_[1], stamps_[2]));
   r.end_to_end = bench::Summarise(EndToEndMs());
+  std::vector<std::pair<double, int64_t>> by_latency;
+  for (const auto& [seq, t_published] : stamps_[0]) {
+    const auto it = stamps_[2].find(seq);
+    if (it != stamps_[2].end()) by_latency.emplace_back(-(it->second - t_published), seq);
+  }
+  const size_t shown = std::min<size_t>(3, by_latency.size());
+  std::partial_sort(by_latency.begin(), by_latency.begin() + shown, by_latency.end());
+  for (size_t i = 0; i < shown; ++i) r.slowest_frames.push_back(by_latency[i].second);
   r.dropped = r.frames - r.end_to_end.count;
   // Unpaced, the frame period is the one actually achieved: queueing counts against it too.
   const double period_hz = rate_hz > 0.0 ? rate_hz : r.achieved_hz;

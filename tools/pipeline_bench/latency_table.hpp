@@ -30,6 +30,12 @@ struct RateResult {
   LatencySummary segmenter;   // PLANES receive - SENSOR_POINTS publish
   LatencySummary mapper;      // POSE receive - PLANES receive
   LatencySummary end_to_end;  // POSE receive - SENSOR_POINTS publish
+  // The frames (their index in the run) with the longest end to end, slowest first: a tail made
+  // by the first frames (buffers allocated, pages touched) tells apart from one in steady state.
+  std::vector<int64_t> slowest_frames;
+  // End to end of the warm-up frames sent before the run (Flags::warmup_frames), not in the
+  // figures above.
+  std::vector<double> warmup_ms;
   // CPU time (user + system, all threads) per frame published, ms; negative when unknown.
   // The sum over the processes bounds the rate the cores can hold whatever the scheduling.
   double segmenter_cpu_ms = -1.0;
@@ -52,6 +58,8 @@ class LatencyTable {
   RateResult Summarise(double rate_hz, double publish_seconds) const;
   // End-to-end latencies in milliseconds, in seq order (for the histogram).
   std::vector<double> EndToEndMs() const;
+  // Drops every stamp (after the warm-up frames).
+  void Forget();
 
  private:
   std::map<int64_t, int64_t> stamps_[3];

@@ -176,6 +176,15 @@ void WriteJson(const BenchReport& report, const Verdict& verdict, std::ostream& 
           << Fixed(RatioToFloor(r.end_to_end.p50_ms, res.floor.PipelineFloorMs()), 2)
           << ", \"e2e_p99_to_floor\": "
           << Fixed(RatioToFloor(r.end_to_end.p99_ms, res.floor.PipelineFloorMs()), 2)
+          << ", \"slowest_frames\": [";
+      for (size_t i = 0; i < r.slowest_frames.size(); ++i) {
+        out << (i ? ", " : "") << r.slowest_frames[i];
+      }
+      out << "], \"warmup_ms\": [";
+      for (size_t i = 0; i < r.warmup_ms.size(); ++i) {
+        out << (i ? ", " : "") << Fixed(r.warmup_ms[i], 3);
+      }
+      out << "]"
           << ", \"other_cores\": " << Fixed(r.other_cores, 3)
           << ", \"load_average\": " << Fixed(r.load_average, 2);
       out << "}" << (j + 1 < res.rates.size() ? "," : "") << "\n";
@@ -295,6 +304,13 @@ void PrintTable(const BenchReport& report, const Verdict& verdict, std::ostream&
           << "segmenter " << Fixed(RatioToFloor(at30->segmenter_cpu_ms, res.segmenter_compute.mean_ms), 1)
           << "x, mapper " << Fixed(RatioToFloor(at30->mapper_cpu_ms, res.mapper_compute.mean_ms), 1)
           << "x\n";
+    }
+    if (!res.rates.empty() && !res.rates.front().warmup_ms.empty()) {
+      out << "  " << res.name << ": each run after " << res.rates.front().warmup_ms.size()
+          << " warm-up frames, not timed (at " << Fixed(res.rates.front().rate_hz, 0)
+          << " Hz they took";
+      for (double ms : res.rates.front().warmup_ms) out << " " << Fixed(ms) << " ms";
+      out << " end to end)\n";
     }
   }
   out << "(latencies in ms; 'held' = no drops and p99 end to end within one frame period;\n"

@@ -21,8 +21,9 @@ std::vector<double> ProfileSegmenter(const std::string& scenario,
                                      const std::vector<std::vector<uint8_t>>& clouds,
                                      std::vector<std::vector<uint8_t>>* plane_sets);
 
-// Feeds each encoded plane_set_t to a mapper with `scenario`'s mapper options; returns each
-// frame's thread CPU time in ms. Throws std::runtime_error on a plane set that does not decode.
+// Feeds each encoded plane_set_t to a mapper with `scenario`'s mapper options and does what the
+// service does with the result (POSE with its covariance, MAP when changed and due, each
+// encoded); returns each frame's thread CPU time in ms. Throws std::runtime_error on a plane set that does not decode.
 std::vector<double> ProfileMapper(const std::string& scenario,
                                   const std::vector<std::vector<uint8_t>>& plane_sets);
 
