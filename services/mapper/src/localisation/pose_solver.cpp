@@ -93,14 +93,27 @@ void AddWallLines(const std::vector<Sighting>& sightings, const std::vector<bool
   }
 }
 
+// The inputs the §II.E motion model weighs wall ends against.
+struct MotionContext {
+  const geometry::Pose2& previous;
+  const LearnedFrustum& frustum;
+  const LocalisationOptions& options;
+  int held;
+  Prediction prediction;
+  bool motion_known() const { return prediction.known; }
+};
+
 // A static edge seen now fixes the position along the wall (c + R e = P); used only where the
 // lines leave a direction open, as an edge taken for static may drift (occlusion). With the
-// motion known each end is weighed against the learnt velocity's prediction, as in the motion
-// model: an end far ahead at a grazing angle jumps by centimetres from frame to frame. Returns
-// whether any end was added.
+// motion known each end is weighed against the prediction, as in the motion model: an end far
+// ahead at a grazing angle jumps by centimetres from frame to frame; and, as there, an end
+// further from the prediction than its noise and the prediction's own error is not the wall's
+// (an edge taken for static that is not where the map has the wall's end). Returns whether any
+// end was added.
 bool AddStaticEnds(const std::vector<Sighting>& sightings, const std::vector<bool>& use,
-                   const Matrix2d& rot, const LearnedFrustum& frustum, bool motion_known,
-                   System* sys) {
+                   const Matrix2d& rot, const MotionContext& m, System* sys) {
+  const LearnedFrustum& frustum = m.frustum;
+  const bool motion_known = m.motion_known();
   bool ends_fix = false;
   for (size_t k = 0; k < sightings.size(); ++k) {
     const Sighting& x = sightings[k];
@@ -111,23 +124,18 @@ bool AddStaticEnds(const std::vector<Sighting>& sightings, const std::vector<boo
       if (!x.plane->static_now[e] || x.plane->static_now_iteration != x.obs->iteration) continue;
       if (frustum.Clipped(x.obs->edge[e])) continue;
       if (!EdgePoint(*x.plane, x.world, e, &mapped)) continue;
+      const double along = t.dot(mapped - rot * x.obs->edge[e]);
+      if (motion_known && std::abs(along - t.dot(m.previous.Translation())) >=
+                              LearnedFrustum::kEdgeNoise + m.prediction.sigma) {
+        continue;
+      }
       const double w = motion_known ? EndWeight(frustum, *x.obs, e) : 1.0;
-      sys->Add(t, t.dot(mapped - rot * x.obs->edge[e]), w);
+      sys->Add(t, along, w);
       ends_fix = true;
     }
   }
   return ends_fix;
 }
-
-// The inputs the §II.E motion model weighs wall ends against.
-struct MotionContext {
-  const geometry::Pose2& previous;
-  const LearnedFrustum& frustum;
-  const LocalisationOptions& options;
-  int held;
-  Prediction prediction;
-  bool motion_known() const { return prediction.known; }
-};
 
 // §II.E motion model, where the walls leave the direction `open` open: a mapped wall end seen
 // where the previous position predicts it; failing that, a wall end seen uncut from poses the
@@ -168,7 +176,7 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
         // less than the learnt velocity: it stands for frames and jumps a column.
         const double spacing = m.frustum.EdgeSpacing(x.obs->edge[e], x.obs->d);
         if (motion_known && spacing > 2.0 * LearnedFrustum::kEdgeNoise) continue;
-        sys->Add(t, along, motion_known ? EndWeight(m.frustum, *x.obs, e) : 1.0);
+          sys->Add(t, along, motion_known ? EndWeight(m.frustum, *x.obs, e) : 1.0);
         placed_ends += motion_known ? 1 : 0;
         continue;
       }
@@ -226,7 +234,7 @@ PoseEstimate SolveOnce(const std::vector<Sighting>& sightings, const std::vector
   Eigen::SelfAdjointEigenSolver<Matrix2d> line_eig(sys.a);
   bool ends_fix = false;
   if (line_eig.eigenvalues()(0) < options.min_information) {
-    ends_fix = AddStaticEnds(sightings, use, rot, m.frustum, m.motion_known(), &sys);
+    ends_fix = AddStaticEnds(sightings, use, rot, m, &sys);
   }
   if (m.motion_known() && ends_fix) {
     // The previous pose, fixed by such ends, is good to about a centimetre, and the prediction
