@@ -5,7 +5,6 @@
 
 #include <dirent.h>
 #include <gtest/gtest.h>
-#include <lcm/eventlog.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,28 +14,13 @@
 #include <sstream>
 
 #include "launch_harness.hpp"
+#include "log_counts.hpp"
 #include "relplane/common/bus.hpp"
 
 namespace relplane::testing {
 namespace {
 
 std::string Scenario() { return SourceDir() + "/scenarios/straight_hallway.yaml"; }
-
-// Events per channel in an LCM log.
-std::map<std::string, int> ChannelCounts(const std::string& path) {
-  std::map<std::string, int> counts;
-  lcm_eventlog_t* log = lcm_eventlog_create(path.c_str(), "r");
-  if (!log) {
-    ADD_FAILURE() << "cannot open " << path;
-    return counts;
-  }
-  while (lcm_eventlog_event_t* event = lcm_eventlog_read_next_event(log)) {
-    ++counts[event->channel];
-    lcm_eventlog_free_event(event);
-  }
-  lcm_eventlog_destroy(log);
-  return counts;
-}
 
 // The local UDP ports of the sockets process `pid` holds (its socket inodes looked up in
 // /proc/net/udp).
@@ -122,9 +106,9 @@ TEST(CloudBus, MapperNeverReceivesCloudsAndTheReplayGivesTheSameTrajectory) {
 
   // One log with every channel; the cloud recorder's part was merged into it.
   const std::map<std::string, int> counts = ChannelCounts(live + "/bus.lcmlog");
-  EXPECT_EQ(counts.count("SENSOR_POINTS") ? counts.at("SENSOR_POINTS") : 0, 90);
-  EXPECT_EQ(counts.count("SIM_TRUTH") ? counts.at("SIM_TRUTH") : 0, 90);
-  EXPECT_GT(counts.count("POSE") ? counts.at("POSE") : 0, 0);
+  EXPECT_EQ(CountOf(counts, "SENSOR_POINTS"), 90);
+  EXPECT_EQ(CountOf(counts, "SIM_TRUTH"), 90);
+  EXPECT_GT(CountOf(counts, "POSE"), 0);
   EXPECT_FALSE(Exists(live + "/clouds.lcmlog"));
 
   // The replay plays the clouds onto a cloud bus of its own, the truth onto the main bus.

@@ -2,32 +2,16 @@
 // lcm-logger. Ports 47174-47176.
 
 #include <gtest/gtest.h>
-#include <lcm/eventlog.h>
 
 #include <map>
 
 #include "launch_harness.hpp"
+#include "log_counts.hpp"
 
 namespace relplane::testing {
 namespace {
 
 constexpr int kIterations = 10;
-
-// Messages per channel in a log.
-std::map<std::string, int> ChannelCounts(const std::string& path) {
-  std::map<std::string, int> counts;
-  lcm_eventlog_t* log = lcm_eventlog_create(path.c_str(), "r");
-  if (!log) {
-    ADD_FAILURE() << "cannot open " << path;
-    return counts;
-  }
-  while (lcm_eventlog_event_t* event = lcm_eventlog_read_next_event(log)) {
-    ++counts[event->channel];
-    lcm_eventlog_free_event(event);
-  }
-  lcm_eventlog_destroy(log);
-  return counts;
-}
 
 // A short simulator-only run of straight_hallway recording `record`; returns the run folder.
 std::string RunRecording(const TempDir& dir, const std::string& record, int port) {
@@ -46,8 +30,8 @@ std::string RunRecording(const TempDir& dir, const std::string& record, int port
 TEST(Record, AllIsEveryChannel) {
   TempDir dir;
   const auto counts = ChannelCounts(RunRecording(dir, "all", 47174) + "/bus.lcmlog");
-  EXPECT_EQ(counts.count("SENSOR_POINTS") ? counts.at("SENSOR_POINTS") : 0, kIterations);
-  EXPECT_EQ(counts.count("SIM_TRUTH") ? counts.at("SIM_TRUTH") : 0, kIterations);
+  EXPECT_EQ(CountOf(counts, "SENSOR_POINTS"), kIterations);
+  EXPECT_EQ(CountOf(counts, "SIM_TRUTH"), kIterations);
   EXPECT_GT(counts.count("SIM_WORLD"), 0u);
 }
 
@@ -55,7 +39,7 @@ TEST(Record, WithoutCloudsIsEveryChannelButSensorPoints) {
   TempDir dir;
   const auto counts = ChannelCounts(RunRecording(dir, "without_clouds", 47175) + "/bus.lcmlog");
   EXPECT_EQ(counts.count("SENSOR_POINTS"), 0u);
-  EXPECT_EQ(counts.count("SIM_TRUTH") ? counts.at("SIM_TRUTH") : 0, kIterations);
+  EXPECT_EQ(CountOf(counts, "SIM_TRUTH"), kIterations);
   EXPECT_GT(counts.count("SIM_WORLD"), 0u);
   EXPECT_GT(counts.count("STATUS"), 0u);
 }
