@@ -50,6 +50,10 @@ void MapperService::OnPlanes(const plane_set_t& msg) {
   const int64_t t0 = MonotonicMicros();
   const std::optional<OdometryIncrement> odometry = odometry_.TakeUntil(msg.utime);
   const PoseEstimate estimate = mapper_.Process(msg.seq, planes, odometry);
+  if (estimate.odometry_refused) {
+    stats_.Rejected("ODOMETRY before PLANES seq " + std::to_string(msg.seq) +
+                    ": moved farther than the platform can; the planes were used without it");
+  }
   stats_.Processed(static_cast<double>(MonotonicMicros() - t0) / 1000.0);
   const Observability observability = ObservabilityOf(estimate);
   bus::Publish(bus_, "POSE", ToPoseMessage(estimate, observability.covariance, mapper_.Height(),

@@ -93,5 +93,29 @@ TEST(OdometryFusion, DecidesNothingTheWallsFix) {
   EXPECT_LT(fused.max_error, alone.max_error + 0.005) << testing::Describe(fused);
 }
 
+// An increment farther than the platform moves in an iteration (a reset odometry frame, a bad
+// message) is refused and said so; the pose is the planes' as without odometry.
+TEST(OdometryFusion, AnImpossibleIncrementIsRefusedAndSaid) {
+  testing::IdealSegmenter segmenter(testing::StraightHallway(), testing::Frustum{});
+  const std::vector<geometry::Pose2> poses = testing::Drive({{0, 0}, {3, 0}}, 1.0, 1.0);
+  Mapper with, without;
+  for (size_t k = 0; k < poses.size(); ++k) {
+    std::optional<OdometryIncrement> odometry;
+    if (k > 0) {
+      odometry = Increment(poses[k - 1].Inverse() * poses[k], 1e-8);
+      if (k == 40) odometry->motion.x = 1e6;
+    }
+    const auto planes = segmenter.Planes(poses[k]);
+    const PoseEstimate a = with.Process(static_cast<int64_t>(k), planes, odometry);
+    const PoseEstimate b = without.Process(static_cast<int64_t>(k), planes);
+    EXPECT_EQ(a.odometry_refused, k == 40) << k;
+    EXPECT_FALSE(b.odometry_refused);
+    if (k == 40) {
+      EXPECT_EQ(a.status, PoseStatus::kTracking);
+      EXPECT_LT((a.pose.Translation() - poses[k].Translation()).norm(), 0.01);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace relplane::mapper

@@ -51,8 +51,8 @@ struct Flags {
   int large_frames = 90;
   int floor_pings = 200;
   // Frames sent to each fresh pipeline before the timed ones: its first clouds of a size pay for
-  // the services' buffers and first-touch pages (the slowest frames of a run were frames 0 and 1
-  // in 5 of 5 quiet 640x480 runs), which a service running for hours pays once.
+  // the services' buffers and first-touch pages, which a service running for hours pays once.
+  // They are timed apart (RateResult::warmup_ms), not dropped from the report.
   int warmup_frames = 2;
   bool skip_large = false;
   bool one_bus = false;

@@ -53,8 +53,14 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   }
   // §II.E the motion since the last iteration: wheel odometry's where the robot has it, else
   // the velocity learnt from the poses the walls fixed.
+  // An increment farther than the platform moves in the iterations it spans is not motion (a
+  // reset odometry frame, a bad message): refused, and said in the pose.
+  const bool odometry_refused =
+      odometry && s.last_iteration >= 0 &&
+      !(odometry->motion.Translation().norm() <=
+        options_.localisation.max_step * static_cast<double>(iteration - s.last_iteration));
   const Motion motion =
-      odometry && s.last_iteration >= 0
+      odometry && s.last_iteration >= 0 && !odometry_refused
           ? s.motion.Odometry(s.pose, *odometry)
           : s.motion.Predict(state.trajectory, s.pose, s.last_iteration, iteration);
   const int64_t previous = s.last_iteration;
@@ -77,9 +83,10 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   Regroup(state, iteration, options_);                                            // §II.F
   CompareVisible(iteration, visible, options_, state);                            // §II.C
   BuildNextGlobalMap(state, options_);                                            // §II.D
-  const PoseEstimate estimate = s.localiser.Localise(
+  PoseEstimate estimate = s.localiser.Localise(
       {iteration, previous, s.pose, motion, &visible}, state, s.frustum, s.motion);  // §II.D-E
   AddPoseTie(registered.loop, estimate, options_.graph, state);  // §II.D loop closing
+  estimate.odometry_refused = odometry_refused;
 
   const bool fixed = estimate.status == PoseStatus::kTracking;
   state.trajectory.Record(iteration, estimate.pose, fixed);  // §II.E

@@ -37,6 +37,9 @@ struct PoseEstimate {
   // 1 for a line good to LearnedFrustum::kEdgeNoise (pose_covariance.hpp turns it into a
   // covariance; its small eigenvalues are the directions the walls leave open).
   Eigen::Matrix2d position_information = Eigen::Matrix2d::Zero();
+  // The odometry given with the planes was not used: it moved farther than the platform can
+  // (LocalisationOptions::max_step an iteration) or was not finite; the learnt velocity stood in.
+  bool odometry_refused = false;
 };
 
 // A mapped wall in the world frame (what MAP carries).
