@@ -1,17 +1,21 @@
 // Backtracking (§II.A end): a plane that matches no recent rltplane is compared to the global map
 // before it becomes a new rltplane.
+#include "plane_store/backtracking.hpp"
+
 #include <gtest/gtest.h>
 
-#include "ideal_segmenter.hpp"
-#include "plane_store/backtracking.hpp"
 #include "global_map/relative_map.hpp"
+#include "ideal_segmenter.hpp"
+#include "state_parts.hpp"
 
 namespace relplane::mapper {
 namespace {
 
 using Eigen::Vector2d;
 
-Observation Seen(Vector2d a, Vector2d b) { return *MakeObservation(testing::WallSeen(a, b), 0, 0.3); }
+Observation Seen(Vector2d a, Vector2d b) {
+  return *MakeObservation(testing::WallSeen(a, b), 0, 0.3);
+}
 
 // A door recess's back wall, 1 m long from x = 5 to 6, mapped from the way out: the near jamb hid
 // its first 0.3 m, so the map knows the end at x = 6 (static) and the wall up to x = 5.3 only.
@@ -19,16 +23,17 @@ class BackWall : public ::testing::Test {
  protected:
   void SetUp() override {
     const Observation out = Seen({5.3, -1.3}, {6.0, -1.3});
-    state_.planes.emplace(kId, RltPlane(kId, out, 0.05, 1000));
+    state_.store.planes.emplace(kId, RltPlane(kId, out, 0.05, 1000));
     Placement placed;
     placed.alpha = out.Alpha();
     placed.known = Known::kPoint;
     placed.ref = out.edge[0].x() > out.edge[1].x() ? 0 : 1;  // the end at x = 6
     placed.point = out.edge[placed.ref];
-    state_.global[kId] = placed;
+    state_.world.global[kId] = placed;
   }
   int64_t Match(Vector2d a, Vector2d b) const {
-    return MatchGlobal(Seen(a, b), geometry::Pose2{}, state_, {}, BacktrackOptions{});
+    return MatchGlobal(Seen(a, b), geometry::Pose2{}, state_.store, state_.grouping, state_.world,
+                       state_.trajectory, {}, BacktrackOptions{});
   }
   static constexpr int64_t kId = 14;
   MapperState state_;
@@ -47,7 +52,7 @@ TEST_F(BackWall, APieceBeyondTheStaticEndDoesNot) {
 
 // Once the other end is known too, the wall ends there.
 TEST_F(BackWall, NorOneBeyondAnEndSeenStaticLater) {
-  Placement& placed = state_.global[kId];
+  Placement& placed = state_.world.global[kId];
   placed.has_other = true;
   placed.other = {5.3, -1.3};
   EXPECT_EQ(Match({5.0, -1.3}, {5.2, -1.3}), -1);
@@ -65,20 +70,21 @@ class WallKnownByItsLine : public ::testing::Test {
     RltPlane plane(kId, first, 0.05, 1000);
     plane.first_seen = SeenFrom(first, geometry::Pose2{});
     plane.Add(last);
-    state_.planes.emplace(kId, std::move(plane));
+    state_.store.planes.emplace(kId, std::move(plane));
     state_.trajectory.poses[0] = geometry::Pose2{};
     state_.trajectory.poses[80] = geometry::Pose2{};
     Placement placed;
     placed.alpha = first.Alpha();
     placed.known = Known::kLine;
     placed.point = first.edge[0];
-    state_.global[kId] = placed;
-    state_.groups.emplace_back();
-    state_.groups.back().stage = GroupStage::kFrozen;
-    state_.placed_by[kId] = 0;
+    state_.world.global[kId] = placed;
+    state_.grouping.groups.emplace_back();
+    state_.grouping.groups.back().stage = GroupStage::kFrozen;
+    state_.world.placed_by[kId] = 0;
   }
   int64_t Match(Vector2d a, Vector2d b) const {
-    return MatchGlobal(Seen(a, b), geometry::Pose2{}, state_, {}, BacktrackOptions{});
+    return MatchGlobal(Seen(a, b), geometry::Pose2{}, state_.store, state_.grouping, state_.world,
+                       state_.trajectory, {}, BacktrackOptions{});
   }
   static constexpr int64_t kId = 7;
   MapperState state_;
@@ -112,26 +118,26 @@ TEST_F(WallKnownByItsLine, NorAPieceTurnedOffItsLine) {
 
 // Before its group is frozen the wall's sightings are still compared: a new rltplane is made.
 TEST_F(WallKnownByItsLine, NorWhileItsGroupStillComparesItsSightings) {
-  state_.groups.back().stage = GroupStage::kRegrouped;
+  state_.grouping.groups.back().stage = GroupStage::kRegrouped;
   EXPECT_EQ(Match({3.0, -1.3}, {3.2, -1.3}), -1);
 }
 
 // A wall with a mapped end on the same line wins, though the sighting fits the bare line better.
 TEST_F(WallKnownByItsLine, AWallWithAMappedEndComesFirst) {
   const Observation end = Seen({3.0, -1.32}, {5.0, -1.32});
-  state_.planes.emplace(kId + 1, RltPlane(kId + 1, end, 0.05, 1000));
+  state_.store.planes.emplace(kId + 1, RltPlane(kId + 1, end, 0.05, 1000));
   Placement placed;
   placed.alpha = end.Alpha();
   placed.known = Known::kPoint;
   placed.ref = end.edge[0].x() < end.edge[1].x() ? 0 : 1;  // the end at x = 3
   placed.point = end.edge[placed.ref];
-  state_.global[kId + 1] = placed;
+  state_.world.global[kId + 1] = placed;
   EXPECT_EQ(Match({3.0, -1.3}, {3.2, -1.3}), kId + 1);
 }
 
 // An orientation alone places nothing to compare with.
 TEST_F(WallKnownByItsLine, NorAWallKnownByItsOrientationOnly) {
-  state_.global[kId].known = Known::kAngle;
+  state_.world.global[kId].known = Known::kAngle;
   EXPECT_EQ(Match({4.9, -1.3}, {5.0, -1.3}), -1);
 }
 

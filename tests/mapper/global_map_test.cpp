@@ -10,10 +10,11 @@
 #include <map>
 #include <optional>
 
+#include "comparison/comparison.hpp"
 #include "group_fixtures.hpp"
 #include "ideal_segmenter.hpp"
 #include "relplane/common/geometry.hpp"
-#include "comparison/comparison.hpp"
+#include "state_parts.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -40,10 +41,10 @@ TEST(GlobalMap, AGroupRePlacedKeepsTheLinkItTookOverFromAnEarlierGroup) {
   state.first_iteration = 0;
   state.trajectory.poses[0] = {0.0, 0.0, 0.0};
   state.trajectory.fixed.insert(0);
-  state.planes.emplace(0, RltPlane(0, a, 0.05, 1000));
-  state.planes.emplace(1, RltPlane(1, b, 0.05, 1000));
-  state.Plane(0)->groups = {0, 1};
-  state.Plane(1)->groups = {1};
+  state.store.planes.emplace(0, RltPlane(0, a, 0.05, 1000));
+  state.store.planes.emplace(1, RltPlane(1, b, 0.05, 1000));
+  state.store.Plane(0)->groups = {0, 1};
+  state.store.Plane(1)->groups = {1};
 
   Group first = Built(0, 0, {{0, Placed(-M_PI / 2, {2, 0}, -1, Known::kLine)}}, 0);
   first.placement = {0.0, 0.0, heading};
@@ -53,17 +54,18 @@ TEST(GlobalMap, AGroupRePlacedKeepsTheLinkItTookOverFromAnEarlierGroup) {
                         {1, Placed(0.0, {2, 1}, 1, Known::kPoint)}},
                        0);
   second.placement = {0.0, 0.0, heading};
-  state.groups = {first, second};
+  state.grouping.groups = {first, second};
   // As group 1 last placed them.
   const Eigen::Rotation2Dd turn(heading);
-  state.global = {{0, Placed(heading - M_PI / 2, turn * Vector2d(2, 1), 0, Known::kPoint)},
-                  {1, Placed(heading, turn * Vector2d(2, 1), 1, Known::kPoint)}};
-  state.placed_by = {{0, 1}, {1, 1}};
+  state.world.global = {{0, Placed(heading - M_PI / 2, turn * Vector2d(2, 1), 0, Known::kPoint)},
+                        {1, Placed(heading, turn * Vector2d(2, 1), 1, Known::kPoint)}};
+  state.world.placed_by = {{0, 1}, {1, 1}};
 
-  BuildGlobalMap(state, 1, MapperOptions{});  // group 1 changed: placed again
-  ASSERT_TRUE(state.global.count(1));
-  EXPECT_NEAR(state.global.at(1).alpha, heading, 1e-9);
-  EXPECT_NEAR(state.global.at(0).alpha, heading - M_PI / 2, 1e-9);
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping,
+                 state.world);  // group 1 changed: placed again
+  ASSERT_TRUE(state.world.global.count(1));
+  EXPECT_NEAR(state.world.global.at(1).alpha, heading, 1e-9);
+  EXPECT_NEAR(state.world.global.at(0).alpha, heading - M_PI / 2, 1e-9);
 }
 
 TEST(GlobalMap, AShortPieceMeasuredFarAlongItsLineDoesNotMoveItsGroupAlongTheHallway) {
@@ -86,23 +88,23 @@ TEST(GlobalMap, AShortPieceMeasuredFarAlongItsLineDoesNotMoveItsGroupAlongTheHal
     const Observation piece =
         *MakeObservation(testing::WallSeen(middle - 0.15 * t, middle + 0.15 * t), k, 0.3);
     if (k == 0) {
-      state.planes.emplace(0, RltPlane(0, wall, 0.05, 1000));
-      state.planes.emplace(1, RltPlane(1, piece, 0.05, 1000));
+      state.store.planes.emplace(0, RltPlane(0, wall, 0.05, 1000));
+      state.store.planes.emplace(1, RltPlane(1, piece, 0.05, 1000));
     } else {
-      state.Plane(0)->Add(wall);
-      state.Plane(1)->Add(piece);
+      state.store.Plane(0)->Add(wall);
+      state.store.Plane(1)->Add(piece);
     }
   }
-  for (RltPlane* plane : {state.Plane(0), state.Plane(1)}) {
+  for (RltPlane* plane : {state.store.Plane(0), state.store.Plane(1)}) {
     plane->latest_pose = {0.0, 0.0, 0.0};
     plane->latest_pose_known = true;
     plane->groups = {0, 1};
   }
   const geometry::Pose2 origin{0.0, 0.0, 0.0};
-  const Observation& wall = state.Plane(0)->Latest();
+  const Observation& wall = state.store.Plane(0)->Latest();
   const int far_end = wall.edge[0].x() > wall.edge[1].x() ? 0 : 1;
   const Placement wall_placed = PlacementOf(wall, origin, far_end);
-  const Placement piece_line = PlacementOf(state.Plane(1)->Latest(), origin, -1);
+  const Placement piece_line = PlacementOf(state.store.Plane(1)->Latest(), origin, -1);
   ASSERT_EQ(wall_placed.known, Known::kPoint);
   ASSERT_NEAR(wall_placed.point.x(), 5.0, 1e-6);
   ASSERT_EQ(piece_line.known, Known::kLine);
@@ -114,12 +116,12 @@ TEST(GlobalMap, AShortPieceMeasuredFarAlongItsLineDoesNotMoveItsGroupAlongTheHal
                                                    DirectionOf(measured.alpha).y();
   ASSERT_GT(std::abs(at_piece - 3.0), 0.045);  // the line the test is about: 4.8 cm off
 
-  state.groups = {Built(0, 0, {{0, wall_placed}, {1, piece_line}}, 0),
-                  Built(1, 2, {{0, wall_placed}, {1, measured}}, 0)};
-  state.global = {{0, wall_placed}, {1, piece_line}};
-  state.placed_by = {{0, 0}, {1, 0}};
-  BuildGlobalMap(state, 1, MapperOptions{});
-  const geometry::Pose2& placed = state.groups[1].placement;
+  state.grouping.groups = {Built(0, 0, {{0, wall_placed}, {1, piece_line}}, 0),
+                           Built(1, 2, {{0, wall_placed}, {1, measured}}, 0)};
+  state.world.global = {{0, wall_placed}, {1, piece_line}};
+  state.world.placed_by = {{0, 0}, {1, 0}};
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping, state.world);
+  const geometry::Pose2& placed = state.grouping.groups[1].placement;
   EXPECT_NEAR(placed.x, 0.0, 0.005);
   EXPECT_NEAR(placed.y, 0.0, 0.005);
   EXPECT_NEAR(placed.yaw, 0.0, 1e-3);
@@ -145,50 +147,49 @@ TEST(GlobalMap, AnEdgeTieFarFromTheGroupsPriorIsLeftOutWhileAnotherAgrees) {
                                 testing::SeenAlongX({11, -1.3}, {11, -1}, 7.0, k)};
     for (int64_t id = 0; id < 3; ++id) {
       if (k == 0) {
-        state.planes.emplace(id, RltPlane(id, seen[id], 0.05, 1000));
+        state.store.planes.emplace(id, RltPlane(id, seen[id], 0.05, 1000));
       } else {
-        state.Plane(id)->Add(seen[id]);
+        state.store.Plane(id)->Add(seen[id]);
       }
     }
   }
   for (int64_t id = 0; id < 3; ++id) {
-    RltPlane* plane = state.Plane(id);
+    RltPlane* plane = state.store.Plane(id);
     plane->latest_pose = from;
     plane->latest_pose_known = true;
     plane->groups = id == 2 ? std::vector<int64_t>{1} : std::vector<int64_t>{0, 1};
   }
   // Which edge index lies where along x (edges in the sensor frame, x along the hallway).
   auto end_at = [&](int64_t id, double x) {
-    const Observation& obs = state.Plane(id)->Latest();
-    return std::abs(obs.edge[0].x() + from.x - x) < std::abs(obs.edge[1].x() + from.x - x) ? 0
-                                                                                             : 1;
+    const Observation& obs = state.store.Plane(id)->Latest();
+    return std::abs(obs.edge[0].x() + from.x - x) < std::abs(obs.edge[1].x() + from.x - x) ? 0 : 1;
   };
   const int a_near = end_at(0, 11.0), a_far = 1 - a_near, b_near = end_at(1, 12.0);
-  Placement a_global = PlacementOf(state.Plane(0)->Latest(), from, a_near);
+  Placement a_global = PlacementOf(state.store.Plane(0)->Latest(), from, a_near);
   ASSERT_EQ(a_global.known, Known::kPoint);
   ASSERT_NEAR(a_global.point.x(), 11.0, 1e-6);
   a_global.has_other = true;
   a_global.other = Vector2d(9.0, -1.0);
   a_global.other_by = 0;
-  const Placement b_global = PlacementOf(state.Plane(1)->Latest(), from, b_near);
+  const Placement b_global = PlacementOf(state.store.Plane(1)->Latest(), from, b_near);
   ASSERT_NEAR(b_global.point.x(), 12.0, 1e-6);
-  const Placement c_seen = PlacementOf(state.Plane(2)->Latest(), from, -1);
+  const Placement c_seen = PlacementOf(state.store.Plane(2)->Latest(), from, -1);
   // Group 1's frame is the world's: A's far end where its near end is.
   Placement a_wrong = a_global;
   a_wrong.has_other = false;
   a_wrong.ref = a_far;
   a_wrong.point = Vector2d(11.0, -1.0);
 
-  state.groups = {Built(0, 0, {{0, a_global}, {1, b_global}}, 0),
-                  Built(1, 2, {{0, a_wrong}, {1, b_global}, {2, c_seen}}, 2)};
-  state.global = {{0, a_global}, {1, b_global}};
-  state.placed_by = {{0, 0}, {1, 0}};
-  BuildGlobalMap(state, 1, MapperOptions{});
-  const geometry::Pose2& placed = state.groups[1].placement;
+  state.grouping.groups = {Built(0, 0, {{0, a_global}, {1, b_global}}, 0),
+                           Built(1, 2, {{0, a_wrong}, {1, b_global}, {2, c_seen}}, 2)};
+  state.world.global = {{0, a_global}, {1, b_global}};
+  state.world.placed_by = {{0, 0}, {1, 0}};
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping, state.world);
+  const geometry::Pose2& placed = state.grouping.groups[1].placement;
   EXPECT_NEAR(placed.x, 0.0, 0.01);
   EXPECT_NEAR(placed.y, 0.0, 0.01);
-  ASSERT_TRUE(state.global.count(2));
-  EXPECT_NEAR(state.global.at(2).point.x(), 11.0, 0.01);
+  ASSERT_TRUE(state.world.global.count(2));
+  EXPECT_NEAR(state.world.global.at(2).point.x(), 11.0, 0.01);
 }
 
 TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {
@@ -214,13 +215,13 @@ TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingDidNotShow) {
   ASSERT_NEAR(wall.Latest().edge[1].y(), 0.5, 1e-9);
   wall.groups = {0};
   const double alpha = wall.first_seen.alpha;
-  state.planes.emplace(0, std::move(wall));
-  state.groups = {Built(0, 6, {{0, Placed(0.0, {0, 0}, 1, Known::kPoint)}}, 0)};
-  BuildGlobalMap(state, 0, MapperOptions{});
-  ASSERT_TRUE(state.global.count(0));
-  EXPECT_NEAR(state.global.at(0).alpha, alpha, 1e-9);
-  EXPECT_NEAR(state.global.at(0).point.x(), 3.0, 1e-9);
-  EXPECT_NEAR(state.global.at(0).point.y(), 0.5, 1e-9);
+  state.store.planes.emplace(0, std::move(wall));
+  state.grouping.groups = {Built(0, 6, {{0, Placed(0.0, {0, 0}, 1, Known::kPoint)}}, 0)};
+  BuildGlobalMap(GlobalInputs(state), 0, MapperOptions{}, state.grouping, state.world);
+  ASSERT_TRUE(state.world.global.count(0));
+  EXPECT_NEAR(state.world.global.at(0).alpha, alpha, 1e-9);
+  EXPECT_NEAR(state.world.global.at(0).point.x(), 3.0, 1e-9);
+  EXPECT_NEAR(state.world.global.at(0).point.y(), 0.5, 1e-9);
 }
 
 TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingSampledCoarsely) {
@@ -251,16 +252,16 @@ TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingSampledCoarsely
   }
   const double a_alpha = a.first_seen.alpha, l_alpha = l.first_seen.alpha;
   const Vector2d across = Eigen::Rotation2Dd(-a_alpha) * Vector2d(0.0, 2.0);
-  state.planes.emplace(0, std::move(a));
-  state.planes.emplace(1, std::move(l));
-  state.groups = {Built(0, 6,
-                        {{0, Placed(0.0, {0, 0}, end, Known::kPoint)},
-                         {1, Placed(l_alpha - a_alpha, across, -1, Known::kLine)}},
-                        0)};
-  BuildGlobalMap(state, 0, MapperOptions{});
-  ASSERT_TRUE(state.global.count(0));
-  EXPECT_NEAR(state.global.at(0).point.x(), 5.0, 0.01);
-  EXPECT_NEAR(state.global.at(0).point.y(), -1.0, 0.01);
+  state.store.planes.emplace(0, std::move(a));
+  state.store.planes.emplace(1, std::move(l));
+  state.grouping.groups = {Built(0, 6,
+                                 {{0, Placed(0.0, {0, 0}, end, Known::kPoint)},
+                                  {1, Placed(l_alpha - a_alpha, across, -1, Known::kLine)}},
+                                 0)};
+  BuildGlobalMap(GlobalInputs(state), 0, MapperOptions{}, state.grouping, state.world);
+  ASSERT_TRUE(state.world.global.count(0));
+  EXPECT_NEAR(state.world.global.at(0).point.x(), 5.0, 0.01);
+  EXPECT_NEAR(state.world.global.at(0).point.y(), -1.0, 0.01);
 }
 
 // From the start pose, a hallway's left wall A (y = 1) seen over 6 m and, on the right
@@ -294,10 +295,10 @@ FirstGroupWithAPieceSeenOff PieceSeenOffFromTheStart(Known b_known) {
     plane->first_seen = SeenFrom(plane->Latest(), state.trajectory.poses[0]);
     plane->groups = {0};
   }
-  state.planes.emplace(0, std::move(wall));
-  state.planes.emplace(1, std::move(piece));
+  state.store.planes.emplace(0, std::move(wall));
+  state.store.planes.emplace(1, std::move(piece));
   const Eigen::Rotation2Dd to_group(-scene.a_alpha);
-  state.groups = {Built(
+  state.grouping.groups = {Built(
       0, 1,
       {{0, Placed(0.0, {0, 0}, -1, Known::kLine)},
        {1, Placed(scene.b_alpha - scene.a_alpha, to_group * (b_middle - a_middle), -1, b_known)}},
@@ -311,9 +312,11 @@ TEST(GlobalMap, AShortPieceSeenOffFromTheStartPoseHardlyTurnsTheFirstGroup) {
   // in, as in the comparisons. Weighed as the piece's best fit, B turned the group and every
   // wall in it by 0.2 degrees, for the whole run (a doors loop at 1 cm, seed 29: 0.1 degrees).
   FirstGroupWithAPieceSeenOff scene = PieceSeenOffFromTheStart(Known::kLine);
-  BuildGlobalMap(scene.state, 0, MapperOptions{});
-  EXPECT_LT(std::abs(geometry::WrapAngle(scene.state.groups[0].placement.yaw - scene.a_alpha)),
-            0.05 * M_PI / 180.0);
+  BuildGlobalMap(GlobalInputs(scene.state), 0, MapperOptions{}, scene.state.grouping,
+                 scene.state.world);
+  EXPECT_LT(
+      std::abs(geometry::WrapAngle(scene.state.grouping.groups[0].placement.yaw - scene.a_alpha)),
+      0.05 * M_PI / 180.0);
 }
 
 TEST(GlobalMap, AWallKnownByItsOrientationOnlyTakesItFromTheComparisons) {
@@ -321,9 +324,10 @@ TEST(GlobalMap, AWallKnownByItsOrientationOnlyTakesItFromTheComparisons) {
   // seen, in the orientation the group's comparisons give it. As first seen, B lay 0.4 degrees
   // off, and the poses localised on it over the next 2 m turned with it.
   FirstGroupWithAPieceSeenOff scene = PieceSeenOffFromTheStart(Known::kAngle);
-  BuildGlobalMap(scene.state, 0, MapperOptions{});
-  ASSERT_TRUE(scene.state.global.count(1));
-  const Placement& placed = scene.state.global.at(1);
+  BuildGlobalMap(GlobalInputs(scene.state), 0, MapperOptions{}, scene.state.grouping,
+                 scene.state.world);
+  ASSERT_TRUE(scene.state.world.global.count(1));
+  const Placement& placed = scene.state.world.global.at(1);
   EXPECT_EQ(placed.known, Known::kLine);
   EXPECT_LT(std::abs(geometry::WrapAngle(placed.alpha - scene.b_alpha)), 0.05 * M_PI / 180.0);
   EXPECT_NEAR(placed.point.y(), -1.0, 0.001);
@@ -385,8 +389,8 @@ SideSeenEdgeOn SideSeenEdgeOnLast(double b_off) {
   side.groups = {1};
   const double wall_alpha = a.Alpha();
   scene.side_alpha = long_b.Alpha();
-  state.planes.emplace(0, std::move(wall));
-  state.planes.emplace(1, std::move(side));
+  state.store.planes.emplace(0, std::move(wall));
+  state.store.planes.emplace(1, std::move(side));
   const Placement wall_line = Placed(wall_alpha, {3, 0}, -1, Known::kLine);
   const Group first = Built(0, 0, {{0, wall_line}}, 0);
   const Group made_later =
@@ -394,9 +398,9 @@ SideSeenEdgeOn SideSeenEdgeOnLast(double b_off) {
             {{0, Placed(0.0, {0, 0}, -1, Known::kLine)},
              {1, Placed(scene.side_alpha + b_off - wall_alpha, {0, 0}, -1, Known::kAngle)}},
             0);
-  state.groups = {first, made_later};
-  state.global = {{0, wall_line}};
-  state.placed_by = {{0, 0}};
+  state.grouping.groups = {first, made_later};
+  state.world.global = {{0, wall_line}};
+  state.world.placed_by = {{0, 0}};
   return scene;
 }
 
@@ -404,9 +408,10 @@ TEST(GlobalMap, AWallKnownByItsOrientationOnlyIsPlacedFromItsAgreeingSightings) 
   // B must lie as its sightings agree, each weighed by how well its fit fixes its orientation,
   // not 3 degrees off as the last one.
   SideSeenEdgeOn scene = SideSeenEdgeOnLast(0.0);
-  BuildGlobalMap(scene.state, 1, MapperOptions{});
-  ASSERT_TRUE(scene.state.global.count(1));
-  const Placement& placed = scene.state.global.at(1);
+  BuildGlobalMap(GlobalInputs(scene.state), 1, MapperOptions{}, scene.state.grouping,
+                 scene.state.world);
+  ASSERT_TRUE(scene.state.world.global.count(1));
+  const Placement& placed = scene.state.world.global.at(1);
   EXPECT_EQ(placed.known, Known::kLine);
   // Within 0.1 degrees and 5 mm of y = 1 at the corner; the last sighting alone: 3 degrees.
   EXPECT_LT(std::abs(std::sin(placed.alpha - scene.side_alpha)), 0.1 * M_PI / 180.0);
@@ -421,9 +426,10 @@ TEST(GlobalMap, AfterTheFirstGroupAWallKnownByItsAngleKeepsItsSightingsOrientati
   // through it, and a room's walls came out 7 cm off (office_other_sensor at 1 cm, seed 22). The
   // first group's walls are different: each is one sighting.
   SideSeenEdgeOn scene = SideSeenEdgeOnLast(1.5 * M_PI / 180.0);
-  BuildGlobalMap(scene.state, 1, MapperOptions{});
-  ASSERT_TRUE(scene.state.global.count(1));
-  EXPECT_LT(std::abs(std::sin(scene.state.global.at(1).alpha - scene.side_alpha)),
+  BuildGlobalMap(GlobalInputs(scene.state), 1, MapperOptions{}, scene.state.grouping,
+                 scene.state.world);
+  ASSERT_TRUE(scene.state.world.global.count(1));
+  EXPECT_LT(std::abs(std::sin(scene.state.world.global.at(1).alpha - scene.side_alpha)),
             0.1 * M_PI / 180.0);
 }
 
@@ -465,19 +471,19 @@ ThroughADoor SeenThroughADoor() {
     const auto& [a, b] = walls[id];
     RltPlane plane(id, seen(a, b, 0), 0.05, 1000);
     for (int64_t k = 1; k <= scene.last; ++k) plane.Add(seen(a, b, k));
-    state.planes.emplace(id, std::move(plane));
+    state.store.planes.emplace(id, std::move(plane));
   }
   scene.wall_alpha = seen({3, 0.5}, {3, 2}, 0).Alpha();
   scene.lower_alpha = seen({3, -0.5}, {3, -2}, 0).Alpha();
-  const Observation& side = state.Plane(2)->Latest();
-  const Observation& end = state.Plane(3)->Latest();
+  const Observation& side = state.store.Plane(2)->Latest();
+  const Observation& end = state.store.Plane(3)->Latest();
   scene.side_alpha = side.Alpha();
   scene.end_alpha = end.Alpha();
   scene.side_corner = side.edge[0].x() > 8.0 ? 0 : 1;
   scene.end_corner = end.edge[0].y() > 1.0 ? 0 : 1;
   for (const auto& [a, b] : {std::pair<int64_t, int64_t>{0, 1}, {0, 2}, {1, 2}, {2, 3}}) {
-    Comparison& c = state.comparisons.emplace(KeyOf(a, b), Comparison(a, b)).first->second;
-    c.Update(*state.Plane(a), *state.Plane(b), scene.last, ComparisonOptions{}, 5);
+    Comparison& c = state.comparisons.pairs.emplace(KeyOf(a, b), Comparison(a, b)).first->second;
+    c.Update(*state.store.Plane(a), *state.store.Plane(b), scene.last, ComparisonOptions{}, 5);
   }
   return scene;
 }
@@ -490,11 +496,11 @@ TEST(GlobalMap, AWallSeenThroughADoorTakesItsOrientationFromThePiecesOnBothSides
   // the group that placed one of them), so the side wall lies within 0.2 degrees.
   ThroughADoor scene = SeenThroughADoor();
   MapperState& state = scene.state;
-  state.Plane(0)->groups = {0, 1};
-  state.Plane(1)->groups = {0, 2};
-  state.Plane(2)->groups = {1, 2};
-  const Comparison* upper_side = state.FindComparison(0, 2);
-  const Comparison* lower_side = state.FindComparison(1, 2);
+  state.store.Plane(0)->groups = {0, 1};
+  state.store.Plane(1)->groups = {0, 2};
+  state.store.Plane(2)->groups = {1, 2};
+  const Comparison* upper_side = state.comparisons.Find(0, 2);
+  const Comparison* lower_side = state.comparisons.Find(1, 2);
   ASSERT_GT(upper_side->PieceInformation(), 0.0);
   ASSERT_GT(lower_side->PieceInformation(), 0.0);
   // The comparisons read the pieces' biases, in opposite directions.
@@ -518,17 +524,17 @@ TEST(GlobalMap, AWallSeenThroughADoorTakesItsOrientationFromThePiecesOnBothSides
                              {{1, Placed(0.0, {0, 0}, -1, Known::kLine)},
                               {2, Placed(lower_side->PieceAlpha(1), {1, 2}, -1, Known::kLine)}},
                              1);
-  state.groups = {first, through_door, beyond};
-  state.global = {{0, upper_line}, {1, lower_line}};
-  state.placed_by = {{0, 0}, {1, 0}};
-  BuildGlobalMap(state, 1, MapperOptions{});
-  ASSERT_TRUE(state.global.count(2));
+  state.grouping.groups = {first, through_door, beyond};
+  state.world.global = {{0, upper_line}, {1, lower_line}};
+  state.world.placed_by = {{0, 0}, {1, 0}};
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping, state.world);
+  ASSERT_TRUE(state.world.global.count(2));
   // Through the upper piece alone: 1.5 degrees.
-  EXPECT_LT(std::abs(geometry::WrapAngle(state.global.at(2).alpha - scene.side_alpha)),
+  EXPECT_LT(std::abs(geometry::WrapAngle(state.world.global.at(2).alpha - scene.side_alpha)),
             0.2 * M_PI / 180.0);
   // The first group's walls are held.
-  EXPECT_NEAR(state.global.at(0).alpha, scene.wall_alpha, 1e-12);
-  EXPECT_NEAR(state.global.at(1).alpha, scene.lower_alpha, 1e-12);
+  EXPECT_NEAR(state.world.global.at(0).alpha, scene.wall_alpha, 1e-12);
+  EXPECT_NEAR(state.world.global.at(1).alpha, scene.lower_alpha, 1e-12);
 }
 
 TEST(GlobalMap, AGroupIsPlacedThroughItsLinksAsTheirOrientationsWereRefined) {
@@ -540,12 +546,12 @@ TEST(GlobalMap, AGroupIsPlacedThroughItsLinksAsTheirOrientationsWereRefined) {
   // every pose there (an unseen office: 6.8 cm in one iteration).
   ThroughADoor scene = SeenThroughADoor();
   MapperState& state = scene.state;
-  state.Plane(0)->groups = {0, 1};
-  state.Plane(1)->groups = {0, 2};
-  state.Plane(2)->groups = {1, 2, 3};
-  state.Plane(3)->groups = {3};
-  const Comparison* upper_side = state.FindComparison(0, 2);
-  const Comparison* lower_side = state.FindComparison(1, 2);
+  state.store.Plane(0)->groups = {0, 1};
+  state.store.Plane(1)->groups = {0, 2};
+  state.store.Plane(2)->groups = {1, 2, 3};
+  state.store.Plane(3)->groups = {3};
+  const Comparison* upper_side = state.comparisons.Find(0, 2);
+  const Comparison* lower_side = state.comparisons.Find(1, 2);
   const Placement upper_line = Placed(scene.wall_alpha, {3, 1}, -1, Known::kLine);
   const Placement lower_line = Placed(scene.lower_alpha, {3, -1}, -1, Known::kLine);
   const Group first = Built(0, 0, {{0, upper_line}, {1, lower_line}}, 0);
@@ -566,29 +572,29 @@ TEST(GlobalMap, AGroupIsPlacedThroughItsLinksAsTheirOrientationsWereRefined) {
             {{2, Placed(scene.side_alpha, scene.corner, scene.side_corner, Known::kPoint)},
              {3, Placed(scene.end_alpha, scene.corner, scene.end_corner, Known::kPoint)}},
             2);
-  state.groups = {first, through_door, beyond, far_end};
-  state.global = {{0, upper_line}, {1, lower_line}};
-  state.placed_by = {{0, 0}, {1, 0}};
-  BuildGlobalMap(state, 1, MapperOptions{});
-  ASSERT_TRUE(state.global.count(2));
-  ASSERT_TRUE(state.global.count(3));
+  state.grouping.groups = {first, through_door, beyond, far_end};
+  state.world.global = {{0, upper_line}, {1, lower_line}};
+  state.world.placed_by = {{0, 0}, {1, 0}};
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping, state.world);
+  ASSERT_TRUE(state.world.global.count(2));
+  ASSERT_TRUE(state.world.global.count(3));
   // Group 3 knows more of the side wall: it placed it, at the corner.
-  EXPECT_EQ(state.placed_by.at(2), 3);
-  EXPECT_EQ(state.global.at(2).known, Known::kPoint);
-  EXPECT_LT(std::abs(geometry::WrapAngle(state.global.at(2).alpha - scene.side_alpha)),
+  EXPECT_EQ(state.world.placed_by.at(2), 3);
+  EXPECT_EQ(state.world.global.at(2).known, Known::kPoint);
+  EXPECT_LT(std::abs(geometry::WrapAngle(state.world.global.at(2).alpha - scene.side_alpha)),
             0.2 * M_PI / 180.0);
   // The corner lies across the room (y) where the side wall's line does.
-  EXPECT_NEAR(state.global.at(2).point.y(), 2.0, 0.01);
-  EXPECT_NEAR(state.global.at(3).point.y(), 2.0, 0.01);
+  EXPECT_NEAR(state.world.global.at(2).point.y(), 2.0, 0.01);
+  EXPECT_NEAR(state.world.global.at(3).point.y(), 2.0, 0.01);
 
   // Group 3 placed again alone: the side wall goes back to group 1's placement for the solve,
   // with group 1's chained orientation; it is refined again first.
-  BuildGlobalMap(state, 3, MapperOptions{});
-  EXPECT_EQ(state.placed_by.at(2), 3);
-  EXPECT_LT(std::abs(geometry::WrapAngle(state.global.at(2).alpha - scene.side_alpha)),
+  BuildGlobalMap(GlobalInputs(state), 3, MapperOptions{}, state.grouping, state.world);
+  EXPECT_EQ(state.world.placed_by.at(2), 3);
+  EXPECT_LT(std::abs(geometry::WrapAngle(state.world.global.at(2).alpha - scene.side_alpha)),
             0.2 * M_PI / 180.0);
-  EXPECT_NEAR(state.global.at(2).point.y(), 2.0, 0.01);
-  EXPECT_NEAR(state.global.at(3).point.y(), 2.0, 0.01);
+  EXPECT_NEAR(state.world.global.at(2).point.y(), 2.0, 0.01);
+  EXPECT_NEAR(state.world.global.at(3).point.y(), 2.0, 0.01);
 }
 
 }  // namespace

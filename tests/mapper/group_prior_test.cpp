@@ -1,8 +1,6 @@
 // §II.D a group's prior: where the links to the map leave a group's position open, a sighting
 // made while the walls fixed the pose (§II.E: the motion model carries a position the walls do
 // not give), from a wall end that stood still (§II.C), and across the members' lines as seen.
-#include "global_map/global_map.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,10 +9,12 @@
 #include <optional>
 #include <utility>
 
+#include "comparison/comparison.hpp"
+#include "global_map/global_map.hpp"
 #include "group_fixtures.hpp"
 #include "ideal_segmenter.hpp"
 #include "relplane/common/geometry.hpp"
-#include "comparison/comparison.hpp"
+#include "state_parts.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -51,15 +51,15 @@ MapperState DrivingAlongX(int64_t last, int64_t last_fixed) {
 // links group 1's position and its prior places it.
 void PlaceByPriorOnly(MapperState* state, const Observation& end, int64_t created,
                       const std::map<int64_t, Placement>& ends) {
-  state->Plane(0)->groups = {0, 1};
+  state->store.Plane(0)->groups = {0, 1};
   std::map<int64_t, Placement> relative = ends;
-  for (const auto& [id, placed] : ends) state->Plane(id)->groups = {1};
+  for (const auto& [id, placed] : ends) state->store.Plane(id)->groups = {1};
   relative[0] = Placed(end.Alpha(), {0, 0}, -1, Known::kAngle);
   const Placement end_line = Placed(end.Alpha(), {4, 0}, -1, Known::kLine);
-  state->groups = {Built(0, 0, {{0, end_line}}, 0), Built(1, created, relative, 1)};
-  state->global = {{0, end_line}};
-  state->placed_by = {{0, 0}};
-  BuildGlobalMap(*state, 1, MapperOptions{});
+  state->grouping.groups = {Built(0, 0, {{0, end_line}}, 0), Built(1, created, relative, 1)};
+  state->world.global = {{0, end_line}};
+  state->world.placed_by = {{0, 0}};
+  BuildGlobalMap(GlobalInputs(*state), 1, MapperOptions{}, state->grouping, state->world);
 }
 
 // PlaceByPriorOnly with group 1 made at iteration `created` knowing the far ends (x = 3) of the
@@ -70,13 +70,13 @@ void ExpectSidesPlacedAtTheirEnds(MapperState* state, RltPlane left, RltPlane ri
       Placed(left.Latest().Alpha(), {3, 1}, FarEnd(left.Latest()), Known::kPoint);
   const Placement right_end =
       Placed(right.Latest().Alpha(), {3, -1}, FarEnd(right.Latest()), Known::kPoint);
-  state->planes.emplace(0, RltPlane(0, end, 0.05, 1000));
-  state->planes.emplace(1, std::move(left));
-  state->planes.emplace(2, std::move(right));
+  state->store.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
+  state->store.planes.emplace(1, std::move(left));
+  state->store.planes.emplace(2, std::move(right));
   PlaceByPriorOnly(state, end, created, {{1, left_end}, {2, right_end}});
-  ASSERT_TRUE(state->global.count(1) && state->global.count(2));
-  EXPECT_NEAR(state->global.at(1).point.x(), 3.0, 1e-9);
-  EXPECT_NEAR(state->global.at(2).point.x(), 3.0, 1e-9);
+  ASSERT_TRUE(state->world.global.count(1) && state->world.global.count(2));
+  EXPECT_NEAR(state->world.global.at(1).point.x(), 3.0, 1e-9);
+  EXPECT_NEAR(state->world.global.at(2).point.x(), 3.0, 1e-9);
 }
 
 // The same with the hallway's sides first seen at iteration `first`, from x = 0.1 first, their
@@ -129,19 +129,19 @@ TEST(GroupPrior, AGroupKnowingItsBasisByItsLineIsPlacedFromAPoseTheWallsFixed) {
   side->groups = {0, 1};
   const double wall_alpha = wall->Observations().front().Alpha();
   const double side_alpha = side->Observations().front().Alpha();
-  state.planes.emplace(0, std::move(*wall));
-  state.planes.emplace(1, std::move(*side));
+  state.store.planes.emplace(0, std::move(*wall));
+  state.store.planes.emplace(1, std::move(*side));
   const Group first = Built(0, 0, {{1, Placed(side_alpha, {0, -1}, -1, Known::kLine)}}, 1);
   const Group made_later = Built(1, 10,
                                  {{0, Placed(0.0, {0, 0}, -1, Known::kLine)},
                                   {1, Placed(side_alpha - wall_alpha, {0, 0}, -1, Known::kAngle)}},
                                  0);
-  state.groups = {first, made_later};
-  state.global = {{1, Placed(side_alpha, {0, -1}, -1, Known::kLine)}};
-  state.placed_by = {{1, 0}};
-  BuildGlobalMap(state, 1, MapperOptions{});
-  ASSERT_TRUE(state.global.count(0));
-  const Placement& placed = state.global.at(0);
+  state.grouping.groups = {first, made_later};
+  state.world.global = {{1, Placed(side_alpha, {0, -1}, -1, Known::kLine)}};
+  state.world.placed_by = {{1, 0}};
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping, state.world);
+  ASSERT_TRUE(state.world.global.count(0));
+  const Placement& placed = state.world.global.at(0);
   EXPECT_NEAR(std::abs(NormalOf(placed.alpha).dot(placed.point)), 3.0, 1e-6);
 }
 
@@ -160,15 +160,15 @@ TEST(GroupPrior, APriorFromSeveralWallEndsAveragesTheirSightings) {
     state.trajectory.poses[k] = {0.0, 0.0, 0.0};
     state.trajectory.fixed.insert(k);
   }
-  state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
-  state.planes.emplace(1, RltPlane(1, left, 0.05, 1000));
-  state.planes.emplace(2, RltPlane(2, right, 0.05, 1000));
+  state.store.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
+  state.store.planes.emplace(1, RltPlane(1, left, 0.05, 1000));
+  state.store.planes.emplace(2, RltPlane(2, right, 0.05, 1000));
   PlaceByPriorOnly(&state, end, 6,
                    {{1, Placed(left.Alpha(), {3, 1}, FarEnd(left), Known::kPoint)},
                     {2, Placed(right.Alpha(), {3, -1}, FarEnd(right), Known::kPoint)}});
-  ASSERT_TRUE(state.global.count(1) && state.global.count(2));
-  EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-9);
-  EXPECT_NEAR(state.global.at(2).point.x(), 3.0, 1e-9);
+  ASSERT_TRUE(state.world.global.count(1) && state.world.global.count(2));
+  EXPECT_NEAR(state.world.global.at(1).point.x(), 3.0, 1e-9);
+  EXPECT_NEAR(state.world.global.at(2).point.x(), 3.0, 1e-9);
 }
 
 TEST(GroupPrior, AWallEndThatMovedSinceTheSightingBeforeDoesNotSetThePrior) {
@@ -237,20 +237,20 @@ TEST(GroupPrior, AnEndSightingFarFromWhereFixedPosesSawThatEndDoesNotSetThePrior
   right.Add(seen({-1, -1}, {3.4, -1}, 0.9, 9, false));
   RltPlane recess(3, seen({1, 1.5}, {3, 1.5}, 0.8, 8, false), 0.05, 1000);
   const Observation end = seen({4, -1}, {4, 1}, 0.9, 9, false);
-  state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
+  state.store.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
   const Placement left_end =
       Placed(left.Latest().Alpha(), {3, 1}, FarEnd(left.Latest()), Known::kPoint);
   const Placement right_end =
       Placed(right.Latest().Alpha(), {3, -1}, FarEnd(right.Latest()), Known::kPoint);
   const Placement recess_end =
       Placed(recess.Latest().Alpha(), {3, 1.5}, FarEnd(recess.Latest()), Known::kPoint);
-  state.planes.emplace(1, std::move(left));
-  state.planes.emplace(2, std::move(right));
-  state.planes.emplace(3, std::move(recess));
+  state.store.planes.emplace(1, std::move(left));
+  state.store.planes.emplace(2, std::move(right));
+  state.store.planes.emplace(3, std::move(recess));
   PlaceByPriorOnly(&state, end, 10, {{1, left_end}, {2, right_end}, {3, recess_end}});
-  ASSERT_TRUE(state.global.count(2) && state.global.count(3));
-  EXPECT_NEAR(state.global.at(2).point.x(), 3.0, 1e-9);
-  EXPECT_NEAR(state.global.at(3).point.x(), 3.0, 1e-9);
+  ASSERT_TRUE(state.world.global.count(2) && state.world.global.count(3));
+  EXPECT_NEAR(state.world.global.at(2).point.x(), 3.0, 1e-9);
+  EXPECT_NEAR(state.world.global.at(3).point.x(), 3.0, 1e-9);
 }
 
 TEST(GroupPrior, ABasisEndThatMovedJustBeforeTheGroupWasMadeDoesNotSetThePrior) {
@@ -271,13 +271,13 @@ TEST(GroupPrior, ABasisEndThatMovedJustBeforeTheGroupWasMadeDoesNotSetThePrior) 
     left.Add(seen({-1, 1}, {3, 1}, 0.1 * static_cast<double>(k), k, false));
   }
   const Observation end = seen({4, -1}, {4, 1}, 0.9, 9, false);
-  state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
+  state.store.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
   const Placement left_end =
       Placed(left.Latest().Alpha(), {3, 1}, FarEnd(left.Latest()), Known::kPoint);
-  state.planes.emplace(1, std::move(left));
+  state.store.planes.emplace(1, std::move(left));
   PlaceByPriorOnly(&state, end, 6, {{1, left_end}});
-  ASSERT_TRUE(state.global.count(1));
-  EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-9);
+  ASSERT_TRUE(state.world.global.count(1));
+  EXPECT_NEAR(state.world.global.at(1).point.x(), 3.0, 1e-9);
 }
 
 TEST(GroupPrior, AMemberEndThatMovedJustBeforeTheGroupWasMadeDoesNotSetThePrior) {
@@ -359,22 +359,22 @@ MapperState HallwayWithAnEndSeenShort(int64_t end_seen = 4) {
   left.groups = {1};
   right.groups = {0, 1};
   const Placement right_line = Placed(right.Latest().Alpha(), {0, -1}, -1, Known::kLine);
-  state.planes.emplace(0, std::move(end));
-  state.planes.emplace(1, std::move(left));
-  state.planes.emplace(2, std::move(right));
-  state.groups = {Built(0, 0, {{2, right_line}}, 2)};
-  state.global = {{2, right_line}};
-  state.placed_by = {{2, 0}};
+  state.store.planes.emplace(0, std::move(end));
+  state.store.planes.emplace(1, std::move(left));
+  state.store.planes.emplace(2, std::move(right));
+  state.grouping.groups = {Built(0, 0, {{2, right_line}}, 2)};
+  state.world.global = {{2, right_line}};
+  state.world.placed_by = {{2, 0}};
   return state;
 }
 
 // The end wall and the left side's far end as HallwayWithAnEndSeenShort's group 1 placed them.
 void ExpectEndWallAndLeftEndWhereTheyAre(const MapperState& state) {
-  ASSERT_TRUE(state.global.count(0) && state.global.count(1));
-  const Placement& placed = state.global.at(0);
+  ASSERT_TRUE(state.world.global.count(0) && state.world.global.count(1));
+  const Placement& placed = state.world.global.at(0);
   EXPECT_NEAR(std::abs(NormalOf(placed.alpha).dot(placed.point)), 4.0, 1e-6);
-  EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 1e-6);
-  EXPECT_NEAR(state.global.at(1).point.y(), 1.0, 1e-6);
+  EXPECT_NEAR(state.world.global.at(1).point.x(), 3.0, 1e-6);
+  EXPECT_NEAR(state.world.global.at(1).point.y(), 1.0, 1e-6);
 }
 
 TEST(GroupPrior, AcrossItsBasisAGroupsPriorIsTheBasissLineNotAnEndSeenAtAGlancingAngle) {
@@ -384,13 +384,13 @@ TEST(GroupPrior, AcrossItsBasisAGroupsPriorIsTheBasissLineNotAnEndSeenAtAGlancin
   // is fixed to a ray's spacing, a line by all its points; on loop_other_sensor a pilaster's
   // group was put 4 to 8 cm along the hallway).
   MapperState state = HallwayWithAnEndSeenShort();
-  const auto alpha = [&](int64_t id) { return state.Plane(id)->Latest().Alpha(); };
+  const auto alpha = [&](int64_t id) { return state.store.Plane(id)->Latest().Alpha(); };
   const Placement end_line = Placed(alpha(0), {4, 0}, -1, Known::kLine);
   const Placement left_end =
-      Placed(alpha(1), {3, 1}, FarEnd(state.Plane(1)->Latest()), Known::kPoint);
+      Placed(alpha(1), {3, 1}, FarEnd(state.store.Plane(1)->Latest()), Known::kPoint);
   const Placement right_line = Placed(alpha(2), {0, -1}, -1, Known::kLine);
-  state.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_line}}, 0));
-  BuildGlobalMap(state, 1, MapperOptions{});
+  state.grouping.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_line}}, 0));
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping, state.world);
   ExpectEndWallAndLeftEndWhereTheyAre(state);
 }
 
@@ -401,14 +401,14 @@ TEST(GroupPrior, AGroupsPriorTakesEveryMembersLineNotOnlyTheBasiss) {
   // wall's line, not the left side's end (an office's last room moved 8 cm across its outer wall
   // when its basis changed from that wall to the partition beside it).
   MapperState state = HallwayWithAnEndSeenShort();
-  const auto alpha = [&](int64_t id) { return state.Plane(id)->Latest().Alpha(); };
+  const auto alpha = [&](int64_t id) { return state.store.Plane(id)->Latest().Alpha(); };
   // Group 1's frame: the left side's far end at the origin.
   const Placement left_end =
-      Placed(alpha(1), {0, 0}, FarEnd(state.Plane(1)->Latest()), Known::kPoint);
+      Placed(alpha(1), {0, 0}, FarEnd(state.store.Plane(1)->Latest()), Known::kPoint);
   const Placement end_line = Placed(alpha(0), {1, 0}, -1, Known::kLine);
   const Placement right_angle = Placed(alpha(2), {0, -2}, -1, Known::kAngle);
-  state.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_angle}}, 1));
-  BuildGlobalMap(state, 1, MapperOptions{});
+  state.grouping.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_angle}}, 1));
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping, state.world);
   ExpectEndWallAndLeftEndWhereTheyAre(state);
 }
 
@@ -419,14 +419,14 @@ TEST(GroupPrior, AMemberSeenOnlySinceTheGroupWasMadeFixesADirectionTheOtherLines
   // end seen 4 cm short, while the end wall's line, seen square on, fixes it (loop_other_sensor:
   // a group 5.5 cm short of its hallway's end wall).
   MapperState state = HallwayWithAnEndSeenShort(7);
-  const auto alpha = [&](int64_t id) { return state.Plane(id)->Latest().Alpha(); };
+  const auto alpha = [&](int64_t id) { return state.store.Plane(id)->Latest().Alpha(); };
   // Group 1's frame: the left side's far end at the origin, the end wall 1 m past it.
   const Placement left_end =
-      Placed(alpha(1), {0, 0}, FarEnd(state.Plane(1)->Latest()), Known::kPoint);
+      Placed(alpha(1), {0, 0}, FarEnd(state.store.Plane(1)->Latest()), Known::kPoint);
   const Placement end_line = Placed(alpha(0), {1, 0}, -1, Known::kLine);
   const Placement right_line = Placed(alpha(2), {0, -2}, -1, Known::kLine);
-  state.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_line}}, 1));
-  BuildGlobalMap(state, 1, MapperOptions{});
+  state.grouping.groups.push_back(Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_line}}, 1));
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping, state.world);
   ExpectEndWallAndLeftEndWhereTheyAre(state);
 }
 
@@ -441,21 +441,21 @@ TEST(GroupPrior, AShortPiecesLineMeasuredMetresAwayHardlyMovesThePrior) {
   RltPlane jamb(3, SeenAlongX({3.5, -0.6}, {3.5, -0.5}, 0.4, 4), 0.05, 1000);
   jamb.Add(SeenAlongX({3.5, -0.6}, {3.5, -0.5}, 0.5, 5));
   jamb.groups = {1};
-  state.planes.emplace(3, std::move(jamb));
-  const auto alpha = [&](int64_t id) { return state.Plane(id)->Latest().Alpha(); };
+  state.store.planes.emplace(3, std::move(jamb));
+  const auto alpha = [&](int64_t id) { return state.store.Plane(id)->Latest().Alpha(); };
   // Group 1's frame: the left side's far end at the origin (the world's (3, 1)).
   const Placement left_end =
-      Placed(alpha(1), {0, 0}, FarEnd(state.Plane(1)->Latest()), Known::kPoint);
+      Placed(alpha(1), {0, 0}, FarEnd(state.store.Plane(1)->Latest()), Known::kPoint);
   const Placement end_line = Placed(alpha(0), {1, 0}, -1, Known::kLine);
   const Placement right_angle = Placed(alpha(2), {0, -2}, -1, Known::kAngle);
   const Placement jamb_line = Placed(alpha(3) + 0.02, {0.5, 2}, -1, Known::kLine);
-  state.groups.push_back(
+  state.grouping.groups.push_back(
       Built(1, 6, {{0, end_line}, {1, left_end}, {2, right_angle}, {3, jamb_line}}, 1));
-  BuildGlobalMap(state, 1, MapperOptions{});
-  ASSERT_TRUE(state.global.count(0) && state.global.count(1));
-  const Placement& placed = state.global.at(0);
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping, state.world);
+  ASSERT_TRUE(state.world.global.count(0) && state.world.global.count(1));
+  const Placement& placed = state.world.global.at(0);
   EXPECT_NEAR(std::abs(NormalOf(placed.alpha).dot(placed.point)), 4.0, 0.002);
-  EXPECT_NEAR(state.global.at(1).point.x(), 3.0, 0.002);
+  EXPECT_NEAR(state.world.global.at(1).point.x(), 3.0, 0.002);
 }
 
 // Driving along x at 0.1 m an iteration, the walls fixing the pose, with `step` rad between the
@@ -480,14 +480,14 @@ std::pair<double, double> SidesPlacedFromEndsSeenEarlyAndLate(double step, doubl
   const Observation end = seen({4, -1}, {4, 1}, at(22), 22, false);
   const double left_alpha = left.Latest().Alpha(), right_alpha = right.Latest().Alpha();
   const int left_ref = FarEnd(left.Latest()), right_ref = FarEnd(right.Latest());
-  state.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
-  state.planes.emplace(1, std::move(left));
-  state.planes.emplace(2, std::move(right));
+  state.store.planes.emplace(0, RltPlane(0, end, 0.05, 1000));
+  state.store.planes.emplace(1, std::move(left));
+  state.store.planes.emplace(2, std::move(right));
   PlaceByPriorOnly(&state, end, 6,
                    {{1, Placed(left_alpha, {3, 1}, left_ref, Known::kPoint)},
                     {2, Placed(right_alpha, {3, -1}, right_ref, Known::kPoint)}});
-  if (!state.global.count(1) || !state.global.count(2)) return {NAN, NAN};
-  return {state.global.at(1).point.x(), state.global.at(2).point.x()};
+  if (!state.world.global.count(1) || !state.world.global.count(2)) return {NAN, NAN};
+  return {state.world.global.at(1).point.x(), state.world.global.at(2).point.x()};
 }
 
 TEST(GroupPrior, AWallEndSeenCoarselyWhenTheGroupWasMadeIsTakenAsSeenMoreFinelySince) {

@@ -1,11 +1,13 @@
 // A loop closed by backtracking (§II.A end) noted at registration and made a pose tie for the
 // pose graph (§II.D), on hand-built groups and walls.
+#include "global_map/loop_closure.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "global_map/loop_closure.hpp"
 #include "ideal_segmenter.hpp"
+#include "state_parts.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -25,20 +27,20 @@ struct Scene {
     for (int k = 0; k < 2; ++k) {
       const auto& w = hallway ? side[k] : ends[k];
       seen.push_back(*MakeObservation(testing::WallSeen(w[0], w[1]), 100, 0.3));
-      state.planes.emplace(k, RltPlane(k, seen.back(), 0.05, 100));
-      state.placed_by[k] = by;
+      state.store.planes.emplace(k, RltPlane(k, seen.back(), 0.05, 100));
+      state.world.placed_by[k] = by;
     }
     for (int64_t g = 0; g < 12; ++g) {
       Group group;
       group.id = g;
-      state.groups.push_back(group);
+      state.grouping.groups.push_back(group);
     }
     for (int k = 0; k < 2; ++k) {
       Placement p;
       p.alpha = seen[k].Alpha();
       p.point = seen[k].edge[0];
       p.known = Known::kLine;
-      chain.push_back({&seen[k], &state.planes.at(k), p});
+      chain.push_back({&seen[k], &state.store.planes.at(k), p});
     }
     // A straight path up to here: not turning.
     for (int64_t i = 90; i < 100; ++i) state.trajectory.Record(i, {0.01 * i, 0, 0}, true);
@@ -48,8 +50,8 @@ struct Scene {
 const MotionModel kMotion(MotionOptions{}, 0.1);
 
 ClosingLoop Note(const Scene& s, int64_t oldest) {
-  return NoteClosing(s.chain, {1.0, 0.0, 0.0}, oldest, s.state, kMotion, 99,
-                     s.state.trajectory.poses.at(99), GroupingOptions{}.recent_groups);
+  return NoteClosing(s.chain, {1.0, 0.0, 0.0}, oldest, s.state.world, s.state.trajectory, kMotion,
+                     99, s.state.trajectory.poses.at(99), GroupingOptions{}.recent_groups);
 }
 
 TEST(LoopClosure, AChainPlacedWellAfterTheReSeenGroupCloses) {
@@ -78,22 +80,22 @@ TEST(LoopClosure, AHallwayLeavesTheDirectionAlongItOpen) {
 
 TEST(LoopClosure, APoseTieHoldsBothGroupsToTheSamePose) {
   Scene s(10, false);
-  s.state.groups[10].placement = {0.5, 0.0, 0.1};
-  s.state.groups[2].placement = {-1.0, 2.0, -0.2};
+  s.state.grouping.groups[10].placement = {0.5, 0.0, 0.1};
+  s.state.grouping.groups[2].placement = {-1.0, 2.0, -0.2};
   const ClosingLoop loop = Note(s, 2);
   PoseEstimate estimate;
   estimate.status = PoseStatus::kTracking;
   estimate.pose = {1.03, 0.0, 0.0};  // the re-seen walls put the sensor 3 cm further on
-  ASSERT_TRUE(AddPoseTie(loop, estimate, PoseGraphOptions{}, s.state));
-  ASSERT_EQ(s.state.pose_ties.size(), 1u);
-  const PoseTie& tie = s.state.pose_ties[0];
+  ASSERT_TRUE(AddPoseTie(loop, estimate, PoseGraphOptions{}, s.state.grouping, s.state.world));
+  ASSERT_EQ(s.state.world.pose_ties.size(), 1u);
+  const PoseTie& tie = s.state.world.pose_ties[0];
   EXPECT_EQ(tie.a_group, 10);
   EXPECT_EQ(tie.b_group, 2);
-  const geometry::Pose2 a = s.state.groups[10].placement * tie.a;
-  const geometry::Pose2 b = s.state.groups[2].placement * tie.b;
+  const geometry::Pose2 a = s.state.grouping.groups[10].placement * tie.a;
+  const geometry::Pose2 b = s.state.grouping.groups[2].placement * tie.b;
   EXPECT_NEAR(a.x, 1.0, 1e-12);
   EXPECT_NEAR(b.x, 1.03, 1e-12);
-  EXPECT_EQ(s.state.pose_ties_made, 1);
+  EXPECT_EQ(s.state.world.pose_ties_made, 1);
 }
 
 // A noise-free office closed its loop 0.2 mm off, and solving the graph for it moved a wall
@@ -104,11 +106,11 @@ TEST(LoopClosure, NoTieWhereTheLoopClosesWhereTheChainHasTheSensorOrNotTracking)
   PoseEstimate estimate;
   estimate.status = PoseStatus::kTracking;
   estimate.pose = {1.001, 0.0, 0.0};  // 1 mm: nothing to spread
-  EXPECT_FALSE(AddPoseTie(loop, estimate, PoseGraphOptions{}, s.state));
+  EXPECT_FALSE(AddPoseTie(loop, estimate, PoseGraphOptions{}, s.state.grouping, s.state.world));
   estimate.pose = {1.03, 0.0, 0.0};
   estimate.status = PoseStatus::kMotionModel;
-  EXPECT_FALSE(AddPoseTie(loop, estimate, PoseGraphOptions{}, s.state));
-  EXPECT_TRUE(s.state.pose_ties.empty());
+  EXPECT_FALSE(AddPoseTie(loop, estimate, PoseGraphOptions{}, s.state.grouping, s.state.world));
+  EXPECT_TRUE(s.state.world.pose_ties.empty());
 }
 
 TEST(LoopClosure, PoseTiesAreBounded) {
@@ -120,11 +122,12 @@ TEST(LoopClosure, PoseTiesAreBounded) {
   estimate.status = PoseStatus::kTracking;
   for (int k = 0; k < 5; ++k) {
     estimate.pose = {1.03 + 0.01 * k, 0.0, 0.0};
-    ASSERT_TRUE(AddPoseTie(loop, estimate, options, s.state));
+    ASSERT_TRUE(AddPoseTie(loop, estimate, options, s.state.grouping, s.state.world));
   }
-  EXPECT_EQ(s.state.pose_ties.size(), 3u);
-  EXPECT_EQ(s.state.pose_ties_made, 5);
-  EXPECT_NEAR((s.state.groups[2].placement * s.state.pose_ties.back().b).x, 1.07, 1e-12);
+  EXPECT_EQ(s.state.world.pose_ties.size(), 3u);
+  EXPECT_EQ(s.state.world.pose_ties_made, 5);
+  EXPECT_NEAR((s.state.grouping.groups[2].placement * s.state.world.pose_ties.back().b).x, 1.07,
+              1e-12);
 }
 
 }  // namespace

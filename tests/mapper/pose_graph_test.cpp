@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ideal_segmenter.hpp"
+#include "state_parts.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -26,15 +27,15 @@ Placement Line(double alpha, const Vector2d& point) {
 
 // Adds a rltplane (the observation only gives it an identity) held by `groups`; returns its id.
 int64_t AddPlane(MapperState* state, const std::vector<int64_t>& groups) {
-  const int64_t id = state->next_id++;
+  const int64_t id = state->store.next_id++;
   PlaneInput input;
   input.normal = Eigen::Vector3d(-1, 0, 0);
   input.centroid = Eigen::Vector3d(1, 0, 0);
   input.vertices = {{1, -1, -1}, {1, 1, -1}, {1, 1, 1}, {1, -1, 1}};
   RltPlane plane(id, *MakeObservation(input, 0, 0.3), 0.05, 100);
   plane.groups = groups;
-  state->planes.emplace(id, std::move(plane));
-  for (int64_t g : groups) state->groups[g].members.push_back(id);
+  state->store.planes.emplace(id, std::move(plane));
+  for (int64_t g : groups) state->grouping.groups[g].members.push_back(id);
   return id;
 }
 
@@ -44,7 +45,7 @@ void AddWall(MapperState* state, const std::vector<int64_t>& groups, double alph
              const Vector2d& world_point) {
   const int64_t id = AddPlane(state, groups);
   for (int64_t g : groups) {
-    state->groups[g].relative.members[id] =
+    state->grouping.groups[g].relative.members[id] =
         Line(alpha, world_point - Vector2d(static_cast<double>(g), 0.0));
   }
 }
@@ -58,9 +59,9 @@ MapperState Loop() {
     Group g;
     g.id = k;
     g.placement = {1.06 * k, 0.02 * k, 0.01 * k};
-    state.groups.push_back(g);
+    state.grouping.groups.push_back(g);
   }
-  state.groups[0].placement = {0, 0, 0};
+  state.grouping.groups[0].placement = {0, 0, 0};
   for (int64_t k = 0; k + 1 < 6; ++k) {
     AddWall(&state, {k, k + 1}, M_PI / 2, {k + 0.5, 0.0});
     AddWall(&state, {k, k + 1}, 0.0, {k + 0.5, 1.0});
@@ -70,8 +71,8 @@ MapperState Loop() {
 }
 
 void ExpectTruth(const MapperState& state, double tolerance) {
-  for (size_t k = 0; k < state.groups.size(); ++k) {
-    const geometry::Pose2& p = state.groups[k].placement;
+  for (size_t k = 0; k < state.grouping.groups.size(); ++k) {
+    const geometry::Pose2& p = state.grouping.groups[k].placement;
     EXPECT_NEAR(p.x, static_cast<double>(k), tolerance) << "group " << k;
     EXPECT_NEAR(p.y, 0.0, tolerance) << "group " << k;
     EXPECT_NEAR(p.yaw, 0.0, tolerance) << "group " << k;
@@ -80,9 +81,10 @@ void ExpectTruth(const MapperState& state, double tolerance) {
 
 TEST(PoseGraph, ALoopClosureIsSpreadOverTheGroups) {
   MapperState state = Loop();
-  EXPECT_EQ(GroupLoopEvidence(state, 4, 3), 0);
-  EXPECT_GT(GroupLoopEvidence(state, 5, 3), 0);
-  const PoseGraphResult r = OptimiseGroupPlacements(state, PoseGraphOptions{});
+  EXPECT_EQ(GroupLoopEvidence(state.store, state.grouping, 4, 3), 0);
+  EXPECT_GT(GroupLoopEvidence(state.store, state.grouping, 5, 3), 0);
+  const PoseGraphResult r =
+      OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
   EXPECT_LT(r.cost_after, r.cost_before);
   ExpectTruth(state, 1e-3);
 }
@@ -92,21 +94,21 @@ TEST(PoseGraph, APlaneTakenOutOfAGroupDoesNotBreakTheChain) {
   // Group 3 loses the cross wall it shared with group 2: its position along the row now comes
   // round the loop (group 0 -> 5 -> 4 -> 3), not from group 2.
   const int64_t cross = 4;  // the walls of pair (2, 3): ids 4 (cross) and 5 (side)
-  state.groups[3].relative.members.erase(cross);
-  state.planes.at(cross).groups = {2};
-  OptimiseGroupPlacements(state, PoseGraphOptions{});
+  state.grouping.groups[3].relative.members.erase(cross);
+  state.store.planes.at(cross).groups = {2};
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
   // Along the row, where no tie holds group 3 to group 2 now, the chain's measure of it (1.06 m
   // on from group 2, 2 cm sigma) weighs in with the loop: within 2 cm of the truth, where the
   // chain alone had it 18 cm off.
   ExpectTruth(state, 0.02);
-  EXPECT_NEAR(state.groups[3].placement.x, 3.0, 0.02);
+  EXPECT_NEAR(state.grouping.groups[3].placement.x, 3.0, 0.02);
 }
 
 TEST(PoseGraph, AWrongTieDoesNotBendTheLoop) {
   MapperState state = Loop();
   // A plane mis-placed by 0.5 m in one group's relative map (a wrong static pairing).
-  state.groups[4].relative.members.at(6).point.x() += 0.5;
-  OptimiseGroupPlacements(state, PoseGraphOptions{});
+  state.grouping.groups[4].relative.members.at(6).point.x() += 0.5;
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
   ExpectTruth(state, 0.02);
 }
 
@@ -114,8 +116,8 @@ TEST(PoseGraph, AWrongTieDoesNotBendTheLoop) {
 void AddTie(MapperState* state, int64_t a, double alpha_a, const Vector2d& point_a, int64_t b,
             double alpha_b, const Vector2d& point_b) {
   const int64_t id = AddPlane(state, {a, b});
-  state->groups[a].relative.members[id] = Line(alpha_a, point_a);
-  state->groups[b].relative.members[id] = Line(alpha_b, point_b);
+  state->grouping.groups[a].relative.members[id] = Line(alpha_a, point_a);
+  state->grouping.groups[b].relative.members[id] = Line(alpha_b, point_b);
 }
 
 // `n` groups, every one placed at the world origin.
@@ -124,7 +126,7 @@ MapperState GroupsAtTheOrigin(int n) {
   for (int k = 0; k < n; ++k) {
     Group g;
     g.id = k;
-    state.groups.push_back(g);
+    state.grouping.groups.push_back(g);
   }
   return state;
 }
@@ -136,16 +138,17 @@ TEST(PoseGraph, WallsTyingGroupsFarAlongThemDoNotTurnAnotherGroup) {
   // 4 mrad. A line's normal turns with the group: without that in the Jacobian the solution
   // turned group 1 by 3.6 mrad to meet group 2 halfway.
   MapperState state = GroupsAtTheOrigin(3);
-  state.groups[2].placement = {0.05, 0.05, 0.01};
+  state.grouping.groups[2].placement = {0.05, 0.05, 0.01};
   const double along = 20.0;
   AddTie(&state, 0, 0.0, {0, 1}, 1, 0.0, {0, 1});
   AddTie(&state, 1, 0.0, {0, 1}, 2, 0.0, {along, 1});
   AddTie(&state, 1, 0.0, {0, -1}, 2, 0.004, {-along, -1});
   AddTie(&state, 1, M_PI / 2, {3, 0}, 2, M_PI / 2, {3, along});
-  const PoseGraphResult r = OptimiseGroupPlacements(state, PoseGraphOptions{});
+  const PoseGraphResult r =
+      OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
   EXPECT_LT(r.cost_after, r.cost_before);
-  EXPECT_NEAR(state.groups[1].placement.yaw, 0.0, 1e-4);
-  EXPECT_NEAR(state.groups[1].placement.y, 0.0, 1e-4);
+  EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 1e-4);
+  EXPECT_NEAR(state.grouping.groups[1].placement.y, 0.0, 1e-4);
 }
 
 TEST(PoseGraph, NearlyParallelWallsDoNotPlaceAGroupAlongThem) {
@@ -158,15 +161,15 @@ TEST(PoseGraph, NearlyParallelWallsDoNotPlaceAGroupAlongThem) {
     Group g;
     g.id = k;
     g.placement = {static_cast<double>(k), 0.0, 0.0};
-    state.groups.push_back(g);
+    state.grouping.groups.push_back(g);
   }
   const double angle = 0.2 * M_PI / 180.0;
   AddTie(&state, 0, 0.0, {0, 1}, 1, 0.0, {-1, 1});
   AddTie(&state, 0, angle, {0, -1}, 1, angle, {-1, -1 + 0.003});
-  OptimiseGroupPlacements(state, PoseGraphOptions{});
-  EXPECT_NEAR(state.groups[1].placement.x, 1.0, 0.01);
-  EXPECT_NEAR(state.groups[1].placement.y, 0.0, 0.003);
-  EXPECT_NEAR(state.groups[1].placement.yaw, 0.0, 1e-4);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  EXPECT_NEAR(state.grouping.groups[1].placement.x, 1.0, 0.01);
+  EXPECT_NEAR(state.grouping.groups[1].placement.y, 0.0, 0.003);
+  EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 1e-4);
 }
 
 TEST(PoseGraph, AnEndPlacedThroughASpreadPairingDoesNotTurnTheGroups) {
@@ -185,10 +188,10 @@ TEST(PoseGraph, AnEndPlacedThroughASpreadPairingDoesNotTurnTheGroups) {
   Placement spread = seen_well;
   spread.point.y() += 0.04;
   spread.variance = 0.03 * 0.03;
-  state.groups[0].relative.members[end] = seen_well;
-  state.groups[1].relative.members[end] = spread;
-  OptimiseGroupPlacements(state, PoseGraphOptions{});
-  EXPECT_NEAR(state.groups[1].placement.yaw, 0.0, 0.1 * M_PI / 180.0);
+  state.grouping.groups[0].relative.members[end] = seen_well;
+  state.grouping.groups[1].relative.members[end] = spread;
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 0.1 * M_PI / 180.0);
 }
 
 TEST(PoseGraph, SolvingAgainWithNothingNewLeavesTheGroupsWhereTheyAre) {
@@ -199,7 +202,8 @@ TEST(PoseGraph, SolvingAgainWithNothingNewLeavesTheGroupsWhereTheyAre) {
   // prior centred on where the last solve left the group counted the end again at every solve,
   // and group 1 slid along the hallway a little further each time (0.25, 0.375, ... m).
   MapperState state = GroupsAtTheOrigin(2);
-  state.groups[1].loop_evidence = 1;  // placed by a loop: no chain from group 0 (ChainPriors)
+  state.grouping.groups[1].loop_evidence =
+      1;  // placed by a loop: no chain from group 0 (ChainPriors)
   AddTie(&state, 0, 0.0, {0, -1}, 1, 0.0, {0, -1});
   const int64_t wall = AddPlane(&state, {0, 1});
   Placement seen_well = Line(0.0, {3, 1});
@@ -208,15 +212,16 @@ TEST(PoseGraph, SolvingAgainWithNothingNewLeavesTheGroupsWhereTheyAre) {
   Placement spread = seen_well;
   spread.point.x() += 0.5;
   spread.variance = 1.0;
-  state.groups[0].relative.members[wall] = seen_well;
-  state.groups[1].relative.members[wall] = spread;
-  OptimiseGroupPlacements(state, PoseGraphOptions{});
-  const geometry::Pose2 first = state.groups[1].placement;
+  state.grouping.groups[0].relative.members[wall] = seen_well;
+  state.grouping.groups[1].relative.members[wall] = spread;
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  const geometry::Pose2 first = state.grouping.groups[1].placement;
   EXPECT_LT(first.x, -0.1);  // the end does pull it (the prior is weak, not a hard anchor)
-  for (int solve = 0; solve < 10; ++solve) OptimiseGroupPlacements(state, PoseGraphOptions{});
-  EXPECT_NEAR(state.groups[1].placement.x, first.x, 1e-3);
-  EXPECT_NEAR(state.groups[1].placement.y, first.y, 1e-3);
-  EXPECT_NEAR(state.groups[1].placement.yaw, first.yaw, 1e-4);
+  for (int solve = 0; solve < 10; ++solve)
+    OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  EXPECT_NEAR(state.grouping.groups[1].placement.x, first.x, 1e-3);
+  EXPECT_NEAR(state.grouping.groups[1].placement.y, first.y, 1e-3);
+  EXPECT_NEAR(state.grouping.groups[1].placement.yaw, first.yaw, 1e-4);
 }
 
 // A hallway of four groups, the chain 1 % long along it (each group's cross wall seen 1 cm
@@ -226,7 +231,7 @@ TEST(PoseGraph, SolvingAgainWithNothingNewLeavesTheGroupsWhereTheyAre) {
 // ties leave a direction open, and not left in the groups before it.
 TEST(PoseGraph, ALoopClosedByBacktrackingIsSpreadOverTheChain) {
   MapperState state = GroupsAtTheOrigin(4);
-  for (int k = 0; k < 4; ++k) state.groups[k].placement = {1.01 * k, 0.0, 0.0};
+  for (int k = 0; k < 4; ++k) state.grouping.groups[k].placement = {1.01 * k, 0.0, 0.0};
   for (int64_t k = 0; k < 3; ++k) {
     AddTie(&state, k, 0.0, {0, 1}, k + 1, 0.0, {0, 1});  // the side wall
     if (k < 2) AddTie(&state, k, M_PI / 2, {0.5, 0}, k + 1, M_PI / 2, {0.5 - 1.01, 0});
@@ -237,10 +242,10 @@ TEST(PoseGraph, ALoopClosedByBacktrackingIsSpreadOverTheChain) {
   closing.a = {0.0, 0.0, 0.0};             // the sensor at group 3's origin ...
   closing.b = {3.0, 0.0, 0.0};             // ... which is 3 m on from group 0's
   closing.a_basis = closing.b_basis = -1;  // frames with no basis (RelativeMap default)
-  state.pose_ties.push_back(closing);
-  OptimiseGroupPlacements(state, PoseGraphOptions{});
-  const double x1 = state.groups[1].placement.x, x2 = state.groups[2].placement.x;
-  const double x3 = state.groups[3].placement.x;
+  state.world.pose_ties.push_back(closing);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  const double x1 = state.grouping.groups[1].placement.x, x2 = state.grouping.groups[2].placement.x;
+  const double x3 = state.grouping.groups[3].placement.x;
   EXPECT_LT(x3, 3.02);   // most of the 3 cm taken out
   EXPECT_LT(x1, 1.009);  // the chain before the open link gives way too
   EXPECT_LT(x2, 2.018);
@@ -248,10 +253,10 @@ TEST(PoseGraph, ALoopClosedByBacktrackingIsSpreadOverTheChain) {
   EXPECT_GT(x3 - x2, 0.98);
   // Without the closing pose, nothing moves.
   MapperState open = state;
-  open.pose_ties.clear();
-  for (int k = 0; k < 4; ++k) open.groups[k].placement = {1.01 * k, 0.0, 0.0};
-  OptimiseGroupPlacements(open, PoseGraphOptions{});
-  EXPECT_NEAR(open.groups[3].placement.x, 3.03, 1e-4);
+  open.world.pose_ties.clear();
+  for (int k = 0; k < 4; ++k) open.grouping.groups[k].placement = {1.01 * k, 0.0, 0.0};
+  OptimiseGroupPlacements(GlobalInputs(open), open.world, PoseGraphOptions{}, open.grouping);
+  EXPECT_NEAR(open.grouping.groups[3].placement.x, 3.03, 1e-4);
 }
 
 // Plane `id` as the world wall a-b seen from a sensor drifting along x and swaying, over
@@ -261,9 +266,9 @@ void AddSeenWall(MapperState* state, int64_t id, const Vector2d& a, const Vector
     const geometry::Pose2 sensor{0.01 * k, 0.05 * std::sin(0.05 * k), 0.05 * std::sin(0.03 * k)};
     const geometry::Pose2 inv = sensor.Inverse();
     const Observation obs = *MakeObservation(testing::WallSeen(inv * a, inv * b), k, 0.3);
-    auto it = state->planes.find(id);
-    if (it == state->planes.end()) {
-      state->planes.emplace(id, RltPlane(id, obs, 0.05, 100));
+    auto it = state->store.planes.find(id);
+    if (it == state->store.planes.end()) {
+      state->store.planes.emplace(id, RltPlane(id, obs, 0.05, 100));
     } else {
       it->second.Add(obs);
     }
@@ -272,12 +277,13 @@ void AddSeenWall(MapperState* state, int64_t id, const Vector2d& a, const Vector
 
 // Compares every pair of the planes AddSeenWall made (§II.C, over iterations 0-59).
 void CompareAll(MapperState* state) {
-  state->next_id = static_cast<int64_t>(state->planes.size());
+  state->store.next_id = static_cast<int64_t>(state->store.planes.size());
   ComparisonOptions options;
-  for (int64_t a = 0; a < state->next_id; ++a) {
-    for (int64_t b = a + 1; b < state->next_id; ++b) {
-      state->comparisons.try_emplace(KeyOf(a, b), a, b)
-          .first->second.Update(state->planes.at(a), state->planes.at(b), 59, options, 5);
+  for (int64_t a = 0; a < state->store.next_id; ++a) {
+    for (int64_t b = a + 1; b < state->store.next_id; ++b) {
+      state->comparisons.pairs.try_emplace(KeyOf(a, b), a, b)
+          .first->second.Update(state->store.planes.at(a), state->store.planes.at(b), 59, options,
+                                5);
     }
   }
 }
@@ -285,10 +291,10 @@ void CompareAll(MapperState* state) {
 // CompareAll, and makes each plane a member of every group.
 void ShareAll(MapperState* state) {
   CompareAll(state);
-  for (size_t g = 0; g < state->groups.size(); ++g) {
-    for (int64_t id = 0; id < state->next_id; ++id) {
-      state->groups[g].members.push_back(id);
-      state->planes.at(id).groups.push_back(static_cast<int64_t>(g));
+  for (size_t g = 0; g < state->grouping.groups.size(); ++g) {
+    for (int64_t id = 0; id < state->store.next_id; ++id) {
+      state->grouping.groups[g].members.push_back(id);
+      state->store.planes.at(id).groups.push_back(static_cast<int64_t>(g));
     }
   }
 }
@@ -306,14 +312,14 @@ TEST(PoseGraph, AShortPiecesOrientationDoesNotTurnTheGroups) {
   AddSeenWall(&state, jamb, {3, 0.5}, {3, 0.6});
   ShareAll(&state);
   for (int64_t g = 0; g < 2; ++g) {
-    state.groups[g].relative.members[upper] = Line(M_PI, {0, 1});
-    state.groups[g].relative.members[lower] = Line(0.0, {0, -1});
+    state.grouping.groups[g].relative.members[upper] = Line(M_PI, {0, 1});
+    state.grouping.groups[g].relative.members[lower] = Line(0.0, {0, -1});
   }
   const double jamb_alpha = -M_PI / 2;
-  state.groups[0].relative.members[jamb] = Line(jamb_alpha, {3, 0.55});
-  state.groups[1].relative.members[jamb] = Line(jamb_alpha + 0.012, {3, 0.55});
-  OptimiseGroupPlacements(state, PoseGraphOptions{});
-  EXPECT_NEAR(state.groups[1].placement.yaw, 0.0, 2e-4);
+  state.grouping.groups[0].relative.members[jamb] = Line(jamb_alpha, {3, 0.55});
+  state.grouping.groups[1].relative.members[jamb] = Line(jamb_alpha + 0.012, {3, 0.55});
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 2e-4);
 }
 
 TEST(PoseGraph, AShortPiecesLineFarFromItsPointDoesNotMoveTheGroups) {
@@ -331,15 +337,15 @@ TEST(PoseGraph, AShortPiecesLineFarFromItsPointDoesNotMoveTheGroups) {
   AddSeenWall(&state, jamb, {3, 0.5}, {3, 0.6});
   ShareAll(&state);
   for (int64_t g = 0; g < 2; ++g) {
-    state.groups[g].relative.members[upper] = Line(M_PI, {0, 1});
-    state.groups[g].relative.members[lower] = Line(0.0, {0, -1});
-    state.groups[g].relative.members[end] = Line(-M_PI / 2, {-1, 0});
+    state.grouping.groups[g].relative.members[upper] = Line(M_PI, {0, 1});
+    state.grouping.groups[g].relative.members[lower] = Line(0.0, {0, -1});
+    state.grouping.groups[g].relative.members[end] = Line(-M_PI / 2, {-1, 0});
   }
-  state.groups[0].relative.members[jamb] = Line(M_PI / 2 + 0.0185, {3, 0.55});
-  state.groups[1].relative.members[jamb] = Line(M_PI / 2, {3, 0.55 - 5.0});
-  OptimiseGroupPlacements(state, PoseGraphOptions{});
-  EXPECT_NEAR(state.groups[1].placement.x, 0.0, 0.002);
-  EXPECT_NEAR(state.groups[1].placement.yaw, 0.0, 2e-4);
+  state.grouping.groups[0].relative.members[jamb] = Line(M_PI / 2 + 0.0185, {3, 0.55});
+  state.grouping.groups[1].relative.members[jamb] = Line(M_PI / 2, {3, 0.55 - 5.0});
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  EXPECT_NEAR(state.grouping.groups[1].placement.x, 0.0, 0.002);
+  EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 2e-4);
 }
 
 TEST(PoseGraph, AGroupsBasisHoldsItsFrameWhateverItsOtherMembers) {
@@ -366,12 +372,12 @@ TEST(PoseGraph, AGroupsBasisHoldsItsFrameWhateverItsOtherMembers) {
   const std::vector<std::vector<int64_t>> members{
       {wall, jamb}, {upper, wall, lower, far_jamb}, {end, far_jamb}};
   for (int64_t g = 0; g < 3; ++g) {
-    Group& group = state.groups[g];
+    Group& group = state.grouping.groups[g];
     group.relative.basis = members[g].front();
     for (int64_t id : members[g]) {
       group.members.push_back(id);
       group.relative.members[id] = lines.at(id);
-      state.planes.at(id).groups.push_back(g);
+      state.store.planes.at(id).groups.push_back(g);
     }
   }
   PoseTie closing;
@@ -381,10 +387,10 @@ TEST(PoseGraph, AGroupsBasisHoldsItsFrameWhateverItsOtherMembers) {
   closing.b_basis = wall;
   closing.a = {0.0, 0.0, 0.0};    // the sensor at group 2's origin ...
   closing.b = {0.0, 0.0, 0.004};  // ... turned 4 mrad from it, as group 0 has the pose
-  state.pose_ties.push_back(closing);
-  OptimiseGroupPlacements(state, PoseGraphOptions{});
-  EXPECT_NEAR(state.groups[1].placement.yaw, 0.0, 3e-4);
-  EXPECT_GT(state.groups[2].placement.yaw, 0.003);
+  state.world.pose_ties.push_back(closing);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 3e-4);
+  EXPECT_GT(state.grouping.groups[2].placement.yaw, 0.003);
 }
 
 TEST(PoseGraph, AJambAsBasisIsALooseLinkAllTheSame) {
@@ -403,14 +409,14 @@ TEST(PoseGraph, AJambAsBasisIsALooseLinkAllTheSame) {
   for (int64_t g = 0; g < 2; ++g) {
     const double t = g == 0 ? 0.0 : turn;
     const Eigen::Rotation2Dd r(-t);
-    Group& group = state.groups[g];
+    Group& group = state.grouping.groups[g];
     group.relative.basis = jamb;
     group.relative.members[jamb] = Line(M_PI / 2, {3, 0.55});
     group.relative.members[upper] = Line(M_PI - t, r * Vector2d(0, 1));
     group.relative.members[lower] = Line(-t, r * Vector2d(0, -1));
   }
-  OptimiseGroupPlacements(state, PoseGraphOptions{});
-  EXPECT_NEAR(state.groups[1].placement.yaw, turn, 3e-4);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  EXPECT_NEAR(state.grouping.groups[1].placement.yaw, turn, 3e-4);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "plane_store/registration.hpp"
+#include "state_parts.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -22,8 +23,8 @@ Observation Seen(Vector2d p0, Vector2d p1, int64_t iteration) {
   in.normal = Vector3d(n.x(), n.y(), 0);
   in.d = -n.dot(p0);
   in.centroid = Vector3d(0.5 * (p0 + p1).x(), 0.5 * (p0 + p1).y(), 0);
-  in.vertices = {{p0.x(), p0.y(), -1}, {p1.x(), p1.y(), -1}, {p1.x(), p1.y(), 1},
-                 {p0.x(), p0.y(), 1}};
+  in.vertices = {
+      {p0.x(), p0.y(), -1}, {p1.x(), p1.y(), -1}, {p1.x(), p1.y(), 1}, {p0.x(), p0.y(), 1}};
   return *MakeObservation(in, iteration, 0.3);
 }
 
@@ -42,9 +43,9 @@ TEST(MarkJumpedEnds, APieceOfAWallSeenWholeHasItsDoorSideEndCut) {
     wall.Add(Seen({3, -2}, {3, 2}, k));
     state.trajectory.poses[k] = {0, 0, 0};
   }
-  state.planes.emplace(0, wall);
+  state.store.planes.emplace(0, wall);
   std::vector<Observation> now = {Seen({3, -2}, {3, -0.6}, 20), Seen({3, 0.6}, {3, 2}, 20)};
-  MarkJumpedEnds({0, -1}, state, {0, 0, 0}, &now);
+  MarkJumpedEnds({0, -1}, state.store, state.trajectory, {0, 0, 0}, &now);
   // The piece continuing the wall keeps its corner and has its door-side end cut.
   EXPECT_FALSE(now[0].cut[EndAt(now[0], {3, -2})]);
   EXPECT_TRUE(now[0].cut[EndAt(now[0], {3, -0.6})]);
@@ -66,9 +67,9 @@ TEST(MarkJumpedEnds, AnEndThatMovesWithTheSensorIsNotCut) {
     wall.Add(seen_from(k / 30.0, k));
     state.trajectory.poses[k] = {k / 30.0, 0, 0};
   }
-  state.planes.emplace(0, wall);
+  state.store.planes.emplace(0, wall);
   std::vector<Observation> now = {seen_from(1.0, 30)};
-  MarkJumpedEnds({0}, state, state.trajectory.poses.rbegin()->second, &now);
+  MarkJumpedEnds({0}, state.store, state.trajectory, state.trajectory.poses.rbegin()->second, &now);
   EXPECT_FALSE(now[0].cut[0]);
   EXPECT_FALSE(now[0].cut[1]);
 }

@@ -10,6 +10,7 @@
 
 #include "ideal_segmenter.hpp"
 #include "relplane/mapper/mapper.hpp"
+#include "state_parts.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -64,7 +65,7 @@ TEST(Registration, ASurfaceReportedTwiceInOneIterationIsOnePlane) {
     mapper.Process(k, {Fitted(Vector2d(3, -2) + shift, corner + shift, 8000),
                        Fitted(piece_end + shift, corner + shift, 300)});
   }
-  EXPECT_EQ(mapper.State().planes.size(), 1u);
+  EXPECT_EQ(mapper.State().store.planes.size(), 1u);
 }
 
 TEST(Registration, OnlyAPieceAlongAWallOfTheSameIterationIsDropped) {
@@ -114,7 +115,7 @@ TEST(Registration, AStripSplitOffAtTheViewsEdgeIsPartOfTheWall) {
     mapper.Process(k, {Fitted({1, 1}, {far, 1}, 6000), Fitted(split, {far, -1}, 6000),
                        Fitted(strip_end, split, 300)});
   }
-  EXPECT_EQ(mapper.State().planes.size(), 2u);
+  EXPECT_EQ(mapper.State().store.planes.size(), 2u);
 }
 
 TEST(Registration, APiecePastAWallsEndIsDroppedOnlyWhereTheViewCutsIt) {
@@ -163,22 +164,24 @@ TEST(Registration, APieceOfAWallAnotherPieceRegisteredToDoesNotTakeThePlaneBehin
   const auto seen_at = [](Vector2d a, Vector2d b, int64_t k) {
     return *MakeObservation(Wall(a, b), k, 0.3);
   };
-  state.planes.emplace(1, RltPlane(1, seen_at({1.0, -1.0}, {4.0, -1.0}, 9), 0.05, 100));
-  state.planes.emplace(2, RltPlane(2, seen_at({0.6, -1.28}, {1.5, -1.28}, 9), 0.05, 100));
-  state.recent = {1, 2};
+  state.store.planes.emplace(1, RltPlane(1, seen_at({1.0, -1.0}, {4.0, -1.0}, 9), 0.05, 100));
+  state.store.planes.emplace(2, RltPlane(2, seen_at({0.6, -1.28}, {1.5, -1.28}, 9), 0.05, 100));
+  state.store.recent = {1, 2};
   const std::vector<Observation> now = {
       *MakeObservation(Fitted({1.8, -1.0}, {4.0, -1.0}, 3000), 10, 0.3),
       *MakeObservation(Fitted({1.0, -1.01}, {1.6, -1.01}, 400), 10, 0.3),
   };
   RegistrationOptions options;
-  ASSERT_GE(MatchScore(state.planes.at(2).Latest(), now[1], options), 0.0);
-  const std::vector<int64_t> match = RegisterObservations(now, state, options);
+  ASSERT_GE(MatchScore(state.store.planes.at(2).Latest(), now[1], options), 0.0);
+  const std::vector<int64_t> match =
+      RegisterObservations(now, state.store, state.world, state.trajectory, options);
   EXPECT_EQ(match[0], 1);
   EXPECT_EQ(match[1], -1);
   // A plane that is no piece of the taken one's surface still takes its next best match.
   const std::vector<Observation> recess_seen = {
       now[0], *MakeObservation(Fitted({0.7, -1.27}, {1.5, -1.27}, 400), 10, 0.3)};
-  EXPECT_EQ(RegisterObservations(recess_seen, state, options)[1], 2);
+  EXPECT_EQ(
+      RegisterObservations(recess_seen, state.store, state.world, state.trajectory, options)[1], 2);
 }
 
 TEST(Registration, ASightingSomeIterationsOldIsComparedFromWhereTheSensorIsNow) {
@@ -189,9 +192,9 @@ TEST(Registration, ASightingSomeIterationsOldIsComparedFromWhereTheSensorIsNow) 
   // face's rltplane, mapped 0.3 m off (loop_other_sensor at sigma = 1 cm, seed 21). Moved from
   // the pose it was seen from to the pose now, the face lies beside that wall, not on it.
   MapperState state;
-  state.planes.emplace(
+  state.store.planes.emplace(
       1, RltPlane(1, *MakeObservation(Wall({4.0, 0.0}, {4.0, 0.5}), 6, 0.3), 0.05, 100));
-  state.recent = {1};
+  state.store.recent = {1};
   state.trajectory.poses[6] = geometry::Pose2{0.0, 0.0, 0.0};
   const geometry::Pose2 now{0.0, 0.0, 0.12};
   const geometry::Pose2 to_sensor = now.Inverse();
@@ -200,14 +203,19 @@ TEST(Registration, ASightingSomeIterationsOldIsComparedFromWhereTheSensorIsNow) 
   };
   const std::vector<Observation> behind = seen_now({4.2, 0.45}, {4.2, 1.5}, 10);
   RegistrationOptions options;
-  ASSERT_GE(MatchScore(state.planes.at(1).Latest(), behind[0], options), 0.0);
-  EXPECT_EQ(RegisterObservations(behind, state, options)[0], 1);  // untransformed
-  EXPECT_EQ(RegisterObservations(behind, state, options, &now)[0], -1);
+  ASSERT_GE(MatchScore(state.store.planes.at(1).Latest(), behind[0], options), 0.0);
+  EXPECT_EQ(RegisterObservations(behind, state.store, state.world, state.trajectory, options)[0],
+            1);  // untransformed
+  EXPECT_EQ(
+      RegisterObservations(behind, state.store, state.world, state.trajectory, options, &now)[0],
+      -1);
   // The face itself, seen again once the turn has ended, still registers.
-  state.planes.at(1).Add(*MakeObservation(
+  state.store.planes.at(1).Add(*MakeObservation(
       Wall(to_sensor * Vector2d(4.0, 0.0), to_sensor * Vector2d(4.0, 0.5)), 11, 0.3));
   state.trajectory.poses[11] = now;
-  EXPECT_EQ(RegisterObservations(seen_now({4.0, 0.0}, {4.0, 0.5}, 12), state, options, &now)[0], 1);
+  EXPECT_EQ(RegisterObservations(seen_now({4.0, 0.0}, {4.0, 0.5}, 12), state.store, state.world,
+                                 state.trajectory, options, &now)[0],
+            1);
 }
 
 TEST(Registration, APieceOfAWallTakesTheWallsOtherRltplaneWhenItsFirstChoiceIsTaken) {
@@ -223,32 +231,39 @@ TEST(Registration, APieceOfAWallTakesTheWallsOtherRltplaneWhenItsFirstChoiceIsTa
   const auto seen_from = [](double x, Vector2d a, Vector2d b, int64_t k) {
     return *MakeObservation(Wall(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
   };
-  state.planes.emplace(1, RltPlane(1, seen_from(0.30, {3, -2}, {3, -0.5}, 6), 0.05, 100));
-  state.planes.at(1).Add(seen_from(0.35, {3, -2}, {3, -0.5}, 7));
-  state.planes.at(1).Add(seen_from(0.40, {3, -2}, {3, -0.5}, 8));
-  state.planes.emplace(2, RltPlane(2, seen_from(0.45, {3, -2}, {3, 2}, 9), 0.05, 100));
-  for (int64_t k = 6; k <= 9; ++k) state.trajectory.poses[k] = {0.05 * static_cast<double>(k), 0.0, 0.0};
-  state.recent = {1, 2};
+  state.store.planes.emplace(1, RltPlane(1, seen_from(0.30, {3, -2}, {3, -0.5}, 6), 0.05, 100));
+  state.store.planes.at(1).Add(seen_from(0.35, {3, -2}, {3, -0.5}, 7));
+  state.store.planes.at(1).Add(seen_from(0.40, {3, -2}, {3, -0.5}, 8));
+  state.store.planes.emplace(2, RltPlane(2, seen_from(0.45, {3, -2}, {3, 2}, 9), 0.05, 100));
+  for (int64_t k = 6; k <= 9; ++k)
+    state.trajectory.poses[k] = {0.05 * static_cast<double>(k), 0.0, 0.0};
+  state.store.recent = {1, 2};
   const std::vector<Observation> now = {seen_from(0.5, {3, 0.5}, {3, 2}, 10),
                                         seen_from(0.5, {3, -2}, {3, -0.5}, 10)};
-  const std::vector<int64_t> match = RegisterObservations(now, state, RegistrationOptions{});
+  const std::vector<int64_t> match =
+      RegisterObservations(now, state.store, state.world, state.trajectory, RegistrationOptions{});
   EXPECT_EQ(match[0], 2);
   EXPECT_EQ(match[1], 1);
   // Not a younger rltplane of that surface: it is the duplicate, left to time out ungrouped
   // (§II.B); fed, it was grouped and placed turned 0.46 degrees by a door's jambs, and the
   // heading with it (office_other_sensor, σ = 1 cm, seed 59: ATE 0.011 -> 0.043 m).
   MapperState whole_older = state;
-  whole_older.planes.erase(2);
-  whole_older.planes.emplace(2, RltPlane(2, seen_from(0.25, {3, -2}, {3, 2}, 5), 0.05, 100));
+  whole_older.store.planes.erase(2);
+  whole_older.store.planes.emplace(2, RltPlane(2, seen_from(0.25, {3, -2}, {3, 2}, 5), 0.05, 100));
   whole_older.trajectory.poses[5] = {0.25, 0.0, 0.0};
   for (int64_t k = 6; k <= 9; ++k) {
-    whole_older.planes.at(2).Add(seen_from(0.05 * static_cast<double>(k), {3, -2}, {3, 2}, k));
+    whole_older.store.planes.at(2).Add(
+        seen_from(0.05 * static_cast<double>(k), {3, -2}, {3, 2}, k));
   }
-  EXPECT_EQ(RegisterObservations(now, whole_older, RegistrationOptions{})[1], -1);
+  EXPECT_EQ(RegisterObservations(now, whole_older.store, whole_older.world, whole_older.trajectory,
+                                 RegistrationOptions{})[1],
+            -1);
   // Not a plane that is no piece of that surface: the back of a recess 0.2 m behind the wall.
-  state.planes.at(1).Add(seen_from(0.45, {3.2, -2}, {3.2, -0.5}, 9));
-  ASSERT_GE(MatchScore(state.planes.at(1).Latest(), now[1], RegistrationOptions{}), 0.0);
-  EXPECT_EQ(RegisterObservations(now, state, RegistrationOptions{})[1], -1);
+  state.store.planes.at(1).Add(seen_from(0.45, {3.2, -2}, {3.2, -0.5}, 9));
+  ASSERT_GE(MatchScore(state.store.planes.at(1).Latest(), now[1], RegistrationOptions{}), 0.0);
+  EXPECT_EQ(RegisterObservations(now, state.store, state.world, state.trajectory,
+                                 RegistrationOptions{})[1],
+            -1);
 }
 
 TEST(Registration, AWallSeenWholeAsALineAlsoFeedsItsOlderMappedRltplane) {
@@ -265,42 +280,49 @@ TEST(Registration, AWallSeenWholeAsALineAlsoFeedsItsOlderMappedRltplane) {
   for (int64_t k = 1; k <= 8; ++k) {
     const Observation piece = seen_from(0.05 * static_cast<double>(k), {3, -2}, {3, -0.5}, k);
     if (k == 1) {
-      state.planes.emplace(1, RltPlane(1, piece, 0.05, 100));
+      state.store.planes.emplace(1, RltPlane(1, piece, 0.05, 100));
     } else {
-      state.planes.at(1).Add(piece);
+      state.store.planes.at(1).Add(piece);
     }
   }
-  state.planes.emplace(2, RltPlane(2, seen_from(0.45, {3, 0.5}, {3, 2}, 9), 0.05, 100));
-  for (int64_t k = 1; k <= 9; ++k) state.trajectory.poses[k] = {0.05 * static_cast<double>(k), 0.0, 0.0};
-  state.recent = {1, 2};
-  state.global[1] = Placement{};
+  state.store.planes.emplace(2, RltPlane(2, seen_from(0.45, {3, 0.5}, {3, 2}, 9), 0.05, 100));
+  for (int64_t k = 1; k <= 9; ++k)
+    state.trajectory.poses[k] = {0.05 * static_cast<double>(k), 0.0, 0.0};
+  state.store.recent = {1, 2};
+  state.world.global[1] = Placement{};
   std::vector<Observation> now = {seen_from(0.5, {3, -2}, {3, 2}, 10)};
   now[0].cut[0] = now[0].cut[1] = true;
   std::vector<int64_t> also;
-  EXPECT_EQ(RegisterObservations(now, state, RegistrationOptions{}, nullptr, &also)[0], 2);
+  EXPECT_EQ(RegisterObservations(now, state.store, state.world, state.trajectory,
+                                 RegistrationOptions{}, nullptr, &also)[0],
+            2);
   EXPECT_EQ(also[0], 1);
   // Not with an end in view: that end would enter the older rltplane's edges and its static
   // pairings, and the groups built from them changed (the noise-free office: a group placed
   // from a room corner's end seen 5 m off, ATE 0.017 m).
   std::vector<Observation> with_end = now;
   with_end[0].cut[1] = false;
-  RegisterObservations(with_end, state, RegistrationOptions{}, nullptr, &also);
+  RegisterObservations(with_end, state.store, state.world, state.trajectory, RegistrationOptions{},
+                       nullptr, &also);
   EXPECT_EQ(also[0], -1);
   // Nor an older rltplane the map does not place: it places no pose.
   MapperState unmapped = state;
-  unmapped.global.clear();
-  RegisterObservations(now, unmapped, RegistrationOptions{}, nullptr, &also);
+  unmapped.world.global.clear();
+  RegisterObservations(now, unmapped.store, unmapped.world, unmapped.trajectory,
+                       RegistrationOptions{}, nullptr, &also);
   EXPECT_EQ(also[0], -1);
   // Nor where the rltplane that took it is mapped too: the pose has the wall.
   MapperState both_mapped = state;
-  both_mapped.global[2] = Placement{};
-  RegisterObservations(now, both_mapped, RegistrationOptions{}, nullptr, &also);
+  both_mapped.world.global[2] = Placement{};
+  RegisterObservations(now, both_mapped.store, both_mapped.world, both_mapped.trajectory,
+                       RegistrationOptions{}, nullptr, &also);
   EXPECT_EQ(also[0], -1);
   // Nor a plane that is no piece of that surface: the back of a recess 0.2 m behind the wall.
   MapperState recess = state;
-  recess.planes.at(1).Add(seen_from(0.45, {3.2, -2}, {3.2, -0.5}, 9));
-  ASSERT_GE(MatchScore(recess.planes.at(1).Latest(), now[0], RegistrationOptions{}), 0.0);
-  RegisterObservations(now, recess, RegistrationOptions{}, nullptr, &also);
+  recess.store.planes.at(1).Add(seen_from(0.45, {3.2, -2}, {3.2, -0.5}, 9));
+  ASSERT_GE(MatchScore(recess.store.planes.at(1).Latest(), now[0], RegistrationOptions{}), 0.0);
+  RegisterObservations(now, recess.store, recess.world, recess.trajectory, RegistrationOptions{},
+                       nullptr, &also);
   EXPECT_EQ(also[0], -1);
 }
 

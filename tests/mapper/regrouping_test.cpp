@@ -1,14 +1,16 @@
 // §II.F reordering and regrouping on hand-built plane sequences, and the bounded memory that
 // rests on it: groups frozen past the regrouping horizon, old observations dropped, the first
 // group still anchored where it was, and a loop driven again adding no groups.
+#include "grouping/regrouping.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "ideal_segmenter.hpp"
 #include "global_map/global_map.hpp"
-#include "grouping/regrouping.hpp"
 #include "global_map/relative_map.hpp"
+#include "ideal_segmenter.hpp"
+#include "state_parts.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -28,9 +30,9 @@ void See(MapperState& state, int64_t id, int64_t k, const Vector2d& a, const Vec
   const Pose2 inv = SensorAt(k).Inverse();
   Observation obs = *MakeObservation(testing::WallSeen(inv * a, inv * b), k, 0.3);
   if (cut) obs.cut[0] = obs.cut[1] = true;
-  auto it = state.planes.find(id);
-  if (it == state.planes.end()) {
-    state.planes.emplace(id, RltPlane(id, obs, 0.05, 3000));
+  auto it = state.store.planes.find(id);
+  if (it == state.store.planes.end()) {
+    state.store.planes.emplace(id, RltPlane(id, obs, 0.05, 3000));
   } else {
     it->second.Add(obs);
   }
@@ -38,26 +40,26 @@ void See(MapperState& state, int64_t id, int64_t k, const Vector2d& a, const Vec
 
 void AddGroup(MapperState& state, const std::vector<int64_t>& members, int64_t created) {
   Group g;
-  g.id = static_cast<int64_t>(state.groups.size());
+  g.id = static_cast<int64_t>(state.grouping.groups.size());
   g.created = created;
   g.members = members;
-  for (int64_t m : members) state.planes.at(m).groups.push_back(g.id);
-  state.groups.push_back(g);
+  for (int64_t m : members) state.store.planes.at(m).groups.push_back(g.id);
+  state.grouping.groups.push_back(g);
 }
 
 void CompareMembers(MapperState& state, const Group& g, int64_t now, const MapperOptions& o) {
   for (size_t i = 0; i < g.members.size(); ++i) {
     for (size_t j = i + 1; j < g.members.size(); ++j) {
       const PairKey key = KeyOf(g.members[i], g.members[j]);
-      state.comparisons.try_emplace(key, key.first, key.second)
-          .first->second.Update(state.planes.at(key.first), state.planes.at(key.second), now,
-                                o.comparison, o.registration.last_seen_window);
+      state.comparisons.pairs.try_emplace(key, key.first, key.second)
+          .first->second.Update(state.store.planes.at(key.first), state.store.planes.at(key.second),
+                                now, o.comparison, o.registration.last_seen_window);
     }
   }
 }
 
-const Vector2d kA0{4, -1}, kA1{4, 1};      // across the way
-const Vector2d kB0{1, 2}, kB1{3, 2};       // on the left
+const Vector2d kA0{4, -1}, kA1{4, 1};       // across the way
+const Vector2d kB0{1, 2}, kB1{3, 2};        // on the left
 const Vector2d kC0{1.5, -2}, kC1{3.5, -2};  // on the right
 const Vector2d kE0{6, -1}, kE1{6, 1};
 const Vector2d kF0{5, 2}, kF1{6, 2};
@@ -75,11 +77,11 @@ TEST(Regrouping, ReorderingChainsEachMemberThroughItsLongestComparison) {
     See(state, c, k, kC0, kC1);
   }
   AddGroup(state, {a, b, c}, 0);
-  CompareMembers(state, state.groups[0], 149, options);
-  Regroup(state, 149, options);
-  EXPECT_EQ(state.groups[0].stage, GroupStage::kNew);
-  Regroup(state, 150, options);
-  const Group& group = state.groups[0];
+  CompareMembers(state, state.grouping.groups[0], 149, options);
+  Regroup(149, options, state.grouping, state.store, state.comparisons, state.world);
+  EXPECT_EQ(state.grouping.groups[0].stage, GroupStage::kNew);
+  Regroup(150, options, state.grouping, state.store, state.comparisons, state.world);
+  const Group& group = state.grouping.groups[0];
   ASSERT_EQ(group.stage, GroupStage::kReordered);
   EXPECT_EQ(group.order.basis, b);
   ASSERT_EQ(group.order.links.size(), 2u);
@@ -87,12 +89,12 @@ TEST(Regrouping, ReorderingChainsEachMemberThroughItsLongestComparison) {
   EXPECT_EQ(group.order.links[0].to, c);
   EXPECT_EQ(group.order.links[1].to, a);
 
-  const RelativeMap map = BuildRelativeMap(group, state);
+  const RelativeMap map = BuildRelativeMap(group, RelativeInputs(state));
   ASSERT_EQ(map.members.size(), 3u);
   // Edge distances and orientation differences are the world's (an independent computation:
   // each wall's last sighting put in the world with the true pose).
   auto world = [&](int64_t id) {
-    const RltPlane& p = state.planes.at(id);
+    const RltPlane& p = state.store.planes.at(id);
     return SeenFrom(p.Latest(), SensorAt(p.LastSeen()));
   };
   for (int64_t id : {a, c}) {
@@ -131,11 +133,11 @@ TEST(RelativeMap, AWallsOrientationComesFromAllItsComparisonsNotOneChainThroughA
     See(state, p, k, mid + turn * (kP0 - mid), mid + turn * (kP1 - mid));
   }
   AddGroup(state, {p, a, b}, 0);
-  CompareMembers(state, state.groups[0], 149, options);
-  const RelativeMap map = BuildRelativeMap(state.groups[0], state);
+  CompareMembers(state, state.grouping.groups[0], 149, options);
+  const RelativeMap map = BuildRelativeMap(state.grouping.groups[0], RelativeInputs(state));
   ASSERT_EQ(map.members.count(a) + map.members.count(b), 2u);
   const auto world = [&](int64_t id) {
-    const RltPlane& plane = state.planes.at(id);
+    const RltPlane& plane = state.store.planes.at(id);
     return SeenFrom(plane.Latest(), SensorAt(plane.LastSeen())).alpha;
   };
   const double relative = map.members.at(b).alpha - map.members.at(a).alpha;
@@ -163,8 +165,8 @@ TEST(RelativeMap, AMemberIsPlacedWhereAllItsStaticPairingsSayNotOneChain) {
     See(state, d, k, kA0, kA1);
   }
   AddGroup(state, {a, b, c, d}, 0);
-  CompareMembers(state, state.groups[0], 149, options);
-  const RelativeMap map = BuildRelativeMap(state.groups[0], state);
+  CompareMembers(state, state.grouping.groups[0], 149, options);
+  const RelativeMap map = BuildRelativeMap(state.grouping.groups[0], RelativeInputs(state));
   ASSERT_EQ(map.members.size(), 4u);
   for (int64_t id : {a, b, c, d}) ASSERT_EQ(map.members.at(id).known, Known::kPoint) << id;
   const Placement& pc = map.members.at(c);
@@ -174,13 +176,13 @@ TEST(RelativeMap, AMemberIsPlacedWhereAllItsStaticPairingsSayNotOneChain) {
   const auto through = [&](int64_t from) {
     const Placement& p = map.members.at(from);
     Vector2d mean;
-    EXPECT_TRUE(state.FindComparison(from, c)->From(from).Pair(p.ref, pc.ref, &mean));
+    EXPECT_TRUE(state.comparisons.Find(from, c)->From(from).Pair(p.ref, pc.ref, &mean));
     return Vector2d(p.point + Eigen::Rotation2Dd(p.alpha) * mean);
   };
   EXPECT_GT((through(a) - through(b)).norm(), 0.008);
   // C's edge from D's, against the world's (C's last sighting is 1 cm back along its line).
   const auto world = [&](int64_t id) {
-    const RltPlane& p = state.planes.at(id);
+    const RltPlane& p = state.store.planes.at(id);
     return SeenFrom(p.Latest(), SensorAt(p.LastSeen()));
   };
   const Vector2d truth = world(c).edge[pc.ref] + 0.01 * along - world(d).edge[pd.ref];
@@ -211,8 +213,8 @@ TEST(RelativeMap, ALineOnlyMemberIsPlacedFromAParallelWallBeforeACrossingOne) {
     if (k >= 100) See(state, t, k, kB0, kB1, true);
   }
   AddGroup(state, {a, p, t}, 0);
-  CompareMembers(state, state.groups[0], 149, options);
-  const RelativeMap map = BuildRelativeMap(state.groups[0], state);
+  CompareMembers(state, state.grouping.groups[0], 149, options);
+  const RelativeMap map = BuildRelativeMap(state.grouping.groups[0], RelativeInputs(state));
   ASSERT_EQ(map.members.count(p) + map.members.count(t), 2u);
   const Placement& right = map.members.at(p);
   const Placement& left = map.members.at(t);
@@ -241,8 +243,8 @@ TEST(RelativeMap, AParallelLineUnsteadyFromTheReferenceEdgeIsTakenFromTheOther) 
     See(state, r, k, mid + turn * (r0 - mid), mid + turn * (r1 - mid), true);
   }
   AddGroup(state, {a, c, r}, 0);
-  CompareMembers(state, state.groups[0], 149, options);
-  const RelativeMap map = BuildRelativeMap(state.groups[0], state);
+  CompareMembers(state, state.grouping.groups[0], 149, options);
+  const RelativeMap map = BuildRelativeMap(state.grouping.groups[0], RelativeInputs(state));
   ASSERT_EQ(map.basis, a);
   ASSERT_EQ(map.members.count(r), 1u);
   const Placement& wall = map.members.at(a);
@@ -262,8 +264,8 @@ TEST(Regrouping, APlacementCarriesTheSpreadOfThePairingsThatPlacedIt) {
     See(state, c, k, kC0, kC1);
   }
   AddGroup(state, {a, b, c}, 0);
-  CompareMembers(state, state.groups[0], 149, options);
-  const RelativeMap map = BuildRelativeMap(state.groups[0], state);
+  CompareMembers(state, state.grouping.groups[0], 149, options);
+  const RelativeMap map = BuildRelativeMap(state.grouping.groups[0], RelativeInputs(state));
   ASSERT_EQ(map.members.size(), 3u);
   for (int64_t id : {a, b, c}) ASSERT_EQ(map.members.at(id).known, Known::kPoint) << id;
   EXPECT_NE(map.basis, a);
@@ -286,8 +288,8 @@ TEST(RelativeMap, APairingWhoseStaticStretchesDisagreeIsNoPointLink) {
       if (k >= 100) See(*state, c, k, kC0 + Vector2d(shift, 0.0), kC1 + Vector2d(shift, 0.0));
     }
     AddGroup(*state, {a, c}, 0);
-    CompareMembers(*state, state->groups[0], 149, options);
-    return BuildRelativeMap(state->groups[0], *state, options.comparison);
+    CompareMembers(*state, state->grouping.groups[0], 149, options);
+    return BuildRelativeMap(state->grouping.groups[0], RelativeInputs(*state), options.comparison);
   };
   MapperState agreeing;
   const RelativeMap linked = build(0.0, &agreeing);
@@ -303,7 +305,7 @@ TEST(RelativeMap, APairingWhoseStaticStretchesDisagreeIsNoPointLink) {
   ASSERT_EQ(a.known, Known::kPoint);
   ASSERT_EQ(c.known, Known::kLine);
   // C's line (y = -2) from A's reference edge (x = 4, y = -1 or 1), as the world has it.
-  const RltPlane& across = disagreeing.planes.at(0);
+  const RltPlane& across = disagreeing.store.planes.at(0);
   const Vector2d edge = SeenFrom(across.Latest(), SensorAt(across.LastSeen())).edge[a.ref];
   const double truth = std::abs(edge.y() + 2.0);
   ASSERT_TRUE(std::abs(truth - 1.0) < 0.01 || std::abs(truth - 3.0) < 0.01) << truth;
@@ -325,9 +327,9 @@ TEST(Regrouping, TheBasisIsInTheSetOfStaticPairingsThatLinksToTheGlobalMap) {
     const Pose2 inv = SensorAt(k).Inverse();
     Observation obs = *MakeObservation(testing::WallSeen(inv * a, inv * b), k, 0.3);
     obs.cut[0] = obs.cut[1] = cut;
-    auto it = state.planes.find(id);
-    if (it == state.planes.end()) {
-      state.planes.emplace(id, RltPlane(id, obs, 0.05, 3000));
+    auto it = state.store.planes.find(id);
+    if (it == state.store.planes.end()) {
+      state.store.planes.emplace(id, RltPlane(id, obs, 0.05, 3000));
     } else {
       it->second.Add(obs);
     }
@@ -341,10 +343,10 @@ TEST(Regrouping, TheBasisIsInTheSetOfStaticPairingsThatLinksToTheGlobalMap) {
   }
   AddGroup(state, {a}, 0);
   AddGroup(state, {a, b, c, h}, 0);
-  CompareMembers(state, state.groups[1], 199, options);
+  CompareMembers(state, state.grouping.groups[1], 199, options);
   // The two sets as described: pairings within each, none across.
   const auto pairings = [&](int64_t x, int64_t y) {
-    const DirectedStats& s = state.FindComparison(x, y)->From(x);
+    const DirectedStats& s = state.comparisons.Find(x, y)->From(x);
     return s.PairCount(0) + s.PairCount(1);
   };
   ASSERT_GT(pairings(a, b), 0.0);
@@ -355,13 +357,13 @@ TEST(Regrouping, TheBasisIsInTheSetOfStaticPairingsThatLinksToTheGlobalMap) {
   Placement a_end;
   a_end.known = Known::kPoint;
   a_end.ref = 0;
-  state.global[a] = a_end;
-  state.placed_by[a] = 0;
+  state.world.global[a] = a_end;
+  state.world.placed_by[a] = 0;
 
-  const ChainOrder order = ChooseOrder(state.groups[1], state);
+  const ChainOrder order = ChooseOrder(state.grouping.groups[1], RelativeInputs(state));
   EXPECT_TRUE(order.basis == a || order.basis == b) << "basis " << order.basis;
-  state.groups[1].order = order;
-  const RelativeMap map = BuildRelativeMap(state.groups[1], state);
+  state.grouping.groups[1].order = order;
+  const RelativeMap map = BuildRelativeMap(state.grouping.groups[1], RelativeInputs(state));
   EXPECT_EQ(map.members.at(a).known, Known::kPoint);
   EXPECT_EQ(map.members.at(b).known, Known::kPoint);
 }
@@ -375,7 +377,7 @@ MapperState WithAShortLivedMember(const MapperOptions& options) {
     if (k < 5) See(state, 2, k, kC0, kC1);
   }
   AddGroup(state, {0, 1, 2}, 0);
-  CompareMembers(state, state.groups[0], 99, options);
+  CompareMembers(state, state.grouping.groups[0], 99, options);
   return state;
 }
 
@@ -385,17 +387,17 @@ TEST(Regrouping, AMemberWithTooShortAnIntervalIsDroppedWhenNoGroupFits) {
   MapperOptions options;
   MapperState state = WithAShortLivedMember(options);
   const int64_t a = 0, b = 1, d = 2;
-  state.global[d] = Placement{};
-  Regroup(state, 299, options);
-  EXPECT_EQ(state.groups[0].members.size(), 3u);  // not yet: only reordered
-  Regroup(state, 300, options);
-  EXPECT_EQ(state.groups[0].stage, GroupStage::kRegrouped);
-  EXPECT_EQ(state.groups[0].members, (std::vector<int64_t>{a, b}));
-  EXPECT_FALSE(state.planes.count(d));
-  EXPECT_FALSE(state.global.count(d));
-  EXPECT_EQ(state.FindComparison(a, d), nullptr);
-  EXPECT_NE(state.FindComparison(a, b), nullptr);
-  EXPECT_TRUE(state.groups[0].dirty);
+  state.world.global[d] = Placement{};
+  Regroup(299, options, state.grouping, state.store, state.comparisons, state.world);
+  EXPECT_EQ(state.grouping.groups[0].members.size(), 3u);  // not yet: only reordered
+  Regroup(300, options, state.grouping, state.store, state.comparisons, state.world);
+  EXPECT_EQ(state.grouping.groups[0].stage, GroupStage::kRegrouped);
+  EXPECT_EQ(state.grouping.groups[0].members, (std::vector<int64_t>{a, b}));
+  EXPECT_FALSE(state.store.planes.count(d));
+  EXPECT_FALSE(state.world.global.count(d));
+  EXPECT_EQ(state.comparisons.Find(a, d), nullptr);
+  EXPECT_NE(state.comparisons.Find(a, b), nullptr);
+  EXPECT_TRUE(state.grouping.groups[0].dirty);
 }
 
 // ... but when D was seen long enough with the members of a younger group, it is placed
@@ -410,14 +412,14 @@ TEST(Regrouping, AMemberWithTooShortAnIntervalMovesToAGroupItFits) {
     See(state, f, k, kF0, kF1);
   }
   AddGroup(state, {e, f}, 200);
-  CompareMembers(state, state.groups[1], 259, options);
-  Regroup(state, 300, options);
-  EXPECT_EQ(state.groups[0].members, (std::vector<int64_t>{a, b}));
-  EXPECT_EQ(state.groups[1].members, (std::vector<int64_t>{e, f, d}));
-  EXPECT_EQ(state.planes.at(d).groups, (std::vector<int64_t>{1}));
-  ASSERT_NE(state.FindComparison(d, e), nullptr);
-  EXPECT_EQ(state.FindComparison(d, e)->Common(), 60.0);
-  EXPECT_EQ(state.groups[1].stage, GroupStage::kNew);  // 100 iterations old
+  CompareMembers(state, state.grouping.groups[1], 259, options);
+  Regroup(300, options, state.grouping, state.store, state.comparisons, state.world);
+  EXPECT_EQ(state.grouping.groups[0].members, (std::vector<int64_t>{a, b}));
+  EXPECT_EQ(state.grouping.groups[1].members, (std::vector<int64_t>{e, f, d}));
+  EXPECT_EQ(state.store.planes.at(d).groups, (std::vector<int64_t>{1}));
+  ASSERT_NE(state.comparisons.Find(d, e), nullptr);
+  EXPECT_EQ(state.comparisons.Find(d, e)->Common(), 60.0);
+  EXPECT_EQ(state.grouping.groups[1].stage, GroupStage::kNew);  // 100 iterations old
 }
 
 MapperOptions ShortHorizon() {
@@ -443,7 +445,7 @@ TEST(BoundedMemory, OldGroupsFreezeAndOldObservationsGoWithoutCostingAccuracy) {
   const int64_t last = static_cast<int64_t>(route.size()) - 1;
   const MapperState& state = mapper.State();
   int frozen = 0;
-  for (const Group& g : state.groups) {
+  for (const Group& g : state.grouping.groups) {
     EXPECT_EQ(g.Frozen(), last - g.created >= options.regrouping.freeze_after) << g.id;
     frozen += g.Frozen() ? 1 : 0;
   }
@@ -451,7 +453,7 @@ TEST(BoundedMemory, OldGroupsFreezeAndOldObservationsGoWithoutCostingAccuracy) {
   // Each plane: its latest observation, and none older than the horizon (plus the sweep
   // period for planes out of view).
   const int64_t oldest = last - ObservationHorizon(options) - 64;
-  for (const auto& [id, plane] : state.planes) {
+  for (const auto& [id, plane] : state.store.planes) {
     if (plane.Observations().size() > 1) {
       EXPECT_GE(plane.Observations().front().iteration, oldest) << "plane " << id;
     }
@@ -469,19 +471,19 @@ TEST(BoundedMemory, TheFirstGroupStaysAnchoredWhenItsObservationsAreGone) {
     mapper.Process(static_cast<int64_t>(k), segmenter.Planes(route[k]));
   }
   MapperState state = mapper.State();
-  ASSERT_FALSE(state.groups.empty());
-  const Pose2 anchored = state.groups[0].placement;
-  const auto placed = state.global;
-  for (auto& [id, plane] : state.planes) plane.DropBefore(plane.LastSeen());
+  ASSERT_FALSE(state.grouping.groups.empty());
+  const Pose2 anchored = state.grouping.groups[0].placement;
+  const auto placed = state.world.global;
+  for (auto& [id, plane] : state.store.planes) plane.DropBefore(plane.LastSeen());
   state.trajectory.poses.clear();
-  state.groups[0].dirty = true;
-  BuildGlobalMap(state, 0, mapper.Options());
-  EXPECT_NEAR(state.groups[0].placement.x, anchored.x, 1e-9);
-  EXPECT_NEAR(state.groups[0].placement.y, anchored.y, 1e-9);
-  EXPECT_NEAR(state.groups[0].placement.yaw, anchored.yaw, 1e-9);
+  state.grouping.groups[0].dirty = true;
+  BuildGlobalMap(GlobalInputs(state), 0, mapper.Options(), state.grouping, state.world);
+  EXPECT_NEAR(state.grouping.groups[0].placement.x, anchored.x, 1e-9);
+  EXPECT_NEAR(state.grouping.groups[0].placement.y, anchored.y, 1e-9);
+  EXPECT_NEAR(state.grouping.groups[0].placement.yaw, anchored.yaw, 1e-9);
   for (const auto& [id, p] : placed) {
-    ASSERT_TRUE(state.global.count(id)) << "plane " << id;
-    EXPECT_LT((state.global.at(id).point - p.point).norm(), 1e-9) << "plane " << id;
+    ASSERT_TRUE(state.world.global.count(id)) << "plane " << id;
+    EXPECT_LT((state.world.global.at(id).point - p.point).norm(), 1e-9) << "plane " << id;
   }
 }
 
@@ -496,10 +498,10 @@ TEST(BoundedMemory, ALoopDrivenAgainAddsNoGroups) {
   size_t groups_after_two = 0;
   for (size_t k = 0; k < route.size(); ++k) {
     mapper.Process(static_cast<int64_t>(k), segmenter.Planes(route[k]));
-    if (k + 1 == 2 * lap) groups_after_two = mapper.State().groups.size();
+    if (k + 1 == 2 * lap) groups_after_two = mapper.State().grouping.groups.size();
   }
   EXPECT_GT(groups_after_two, 0u);
-  EXPECT_EQ(mapper.State().groups.size(), groups_after_two);
+  EXPECT_EQ(mapper.State().grouping.groups.size(), groups_after_two);
 }
 
 }  // namespace

@@ -5,13 +5,14 @@
 
 #include <cmath>
 
-#include "ideal_segmenter.hpp"
 #include "global_map/global_map.hpp"
 #include "grouping/grouping.hpp"
+#include "ideal_segmenter.hpp"
 #include "localisation/pose_solver.hpp"
+#include "plane_store/registration.hpp"
 #include "plane_store/view_cuts.hpp"
 #include "relplane/mapper/mapper.hpp"
-#include "plane_store/registration.hpp"
+#include "state_parts.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -25,13 +26,13 @@ PlaneInput Wall(Vector2d p0, Vector2d p1) { return testing::WallSeen(p0, p1); }
 // the ungrouped list), as the mapper's registration would.
 void See(MapperState* state, int64_t id, int64_t k, Vector2d a, Vector2d b) {
   Observation o = *MakeObservation(Wall(a, b), k, 0.3);
-  if (!state->planes.count(id)) {
-    state->planes.emplace(id, RltPlane(id, o, 0.05, 1000));
-    state->ungrouped.push_back(id);
+  if (!state->store.planes.count(id)) {
+    state->store.planes.emplace(id, RltPlane(id, o, 0.05, 1000));
+    state->grouping.ungrouped.push_back(id);
   } else {
-    state->planes.at(id).Add(o);
+    state->store.planes.at(id).Add(o);
   }
-  state->recent.insert(id);
+  state->store.recent.insert(id);
 }
 
 TEST(Observation, ReducesAWallAndRejectsFloorsAndBadNumbers) {
@@ -130,23 +131,27 @@ TEST(Grouping, CovisiblePlanesShareAGroupAndANewPlaneLinksToThePrevious) {
     if (k < 25) add(0, k, {2, -1}, {2, 1}), visible.push_back(0);
     add(1, k, {1, 1}, {5, 1});
     if (k >= 30) add(2, k, {4, -1}, {4, -2}), visible.push_back(2);
-    UpdateGroups(state, visible, k, options.grouping);
+    UpdateGroups({}, visible, k, options.grouping, state.grouping, state.store);
   }
-  ASSERT_EQ(state.groups.size(), 2u);
-  EXPECT_EQ(state.groups[0].members, (std::vector<int64_t>{0, 1}));
+  ASSERT_EQ(state.grouping.groups.size(), 2u);
+  EXPECT_EQ(state.grouping.groups[0].members, (std::vector<int64_t>{0, 1}));
   // The second group holds the new plane and the link plane 1 from the first group.
-  EXPECT_EQ(state.groups[1].members, (std::vector<int64_t>{2, 1}));
-  EXPECT_TRUE(state.ungrouped.empty());
+  EXPECT_EQ(state.grouping.groups[1].members, (std::vector<int64_t>{2, 1}));
+  EXPECT_TRUE(state.grouping.ungrouped.empty());
 }
 
 TEST(Grouping, ShortLivedPlanesTimeOut) {
   MapperOptions options;
   MapperState state;
-  state.planes.emplace(5, RltPlane(5, *MakeObservation(Wall({2, -1}, {2, 1}), 0, 0.3), 0.05, 100));
-  state.ungrouped.push_back(5);
-  for (int64_t k = 1; k < 60; ++k) UpdateGroups(state, {}, k, options.grouping);
-  EXPECT_TRUE(state.planes.empty());
-  EXPECT_TRUE(state.ungrouped.empty());
+  state.store.planes.emplace(
+      5, RltPlane(5, *MakeObservation(Wall({2, -1}, {2, 1}), 0, 0.3), 0.05, 100));
+  // Registration hands the new rltplane to grouping, which keeps it on the ungrouped list (§II.B).
+  UpdateGroups({5}, {}, 1, options.grouping, state.grouping, state.store);
+  EXPECT_EQ(state.grouping.ungrouped, (std::vector<int64_t>{5}));
+  for (int64_t k = 2; k < 60; ++k)
+    UpdateGroups({}, {}, k, options.grouping, state.grouping, state.store);
+  EXPECT_TRUE(state.store.planes.empty());
+  EXPECT_TRUE(state.grouping.ungrouped.empty());
 }
 
 TEST(Grouping, APlaneWhoseOrientationWandersIsNotGrouped) {
@@ -166,11 +171,11 @@ TEST(Grouping, APlaneWhoseOrientationWandersIsNotGrouped) {
     add(0, k, {2, -1}, {2, 1});
     add(1, k, {-1, -1}, {1.5, -1 + 2.5 * std::tan(jitter)});
     add(2, k, {1, 1}, {1 + length * std::cos(turn), 1 + length * std::sin(turn)});
-    UpdateGroups(state, {0, 1, 2}, k, options.grouping);
+    UpdateGroups({}, {0, 1, 2}, k, options.grouping, state.grouping, state.store);
   }
-  ASSERT_EQ(state.groups.size(), 1u);
-  EXPECT_EQ(state.groups[0].members, (std::vector<int64_t>{0, 1}));
-  EXPECT_EQ(state.ungrouped, (std::vector<int64_t>{2}));
+  ASSERT_EQ(state.grouping.groups.size(), 1u);
+  EXPECT_EQ(state.grouping.groups[0].members, (std::vector<int64_t>{0, 1}));
+  EXPECT_EQ(state.grouping.ungrouped, (std::vector<int64_t>{2}));
 }
 
 TEST(Localisation, TwoWallsGiveThePoseOneWallTheMotionModel) {
@@ -191,8 +196,8 @@ TEST(Localisation, TwoWallsGiveThePoseOneWallTheMotionModel) {
   LearnedFrustum frustum;
   LocalisationOptions options;
   const geometry::Pose2 previous{0.9, -0.4, 0.05};
-  PoseEstimate est = Localise({{&a.Latest(), &a, pa}, {&b.Latest(), &b, pb}}, previous, frustum,
-                              options);
+  PoseEstimate est =
+      Localise({{&a.Latest(), &a, pa}, {&b.Latest(), &b, pb}}, previous, frustum, options);
   EXPECT_EQ(est.status, PoseStatus::kTracking);
   EXPECT_NEAR(est.pose.x, truth.x, 1e-6);
   EXPECT_NEAR(est.pose.y, truth.y, 1e-6);
@@ -285,8 +290,8 @@ PoseEstimate LocaliseInHallway(double x, const geometry::Pose2& previous, double
   std::vector<Sighting> sightings;
   for (int k = 0; k < 3; ++k) {
     const Vector2d far = walls[k][0] == seen_end[k] ? walls[k][1] : walls[k][0];
-    planes.emplace_back(k, *MakeObservation(Wall(far - sensor, seen_end[k] - sensor), 1, 0.3),
-                        0.05, 100);
+    planes.emplace_back(k, *MakeObservation(Wall(far - sensor, seen_end[k] - sensor), 1, 0.3), 0.05,
+                        100);
     Placement line;
     line.alpha = planes.back().Latest().Alpha();
     line.point = walls[k][0];
@@ -361,8 +366,8 @@ TEST(Localisation, WallsThatAllDisagreeKeepThePreviousPose) {
   // 0.5 m from it and is left out. The pose they gave must not be published with the LOST
   // status: the previous one is.
   const geometry::Pose2 previous{0.2, -0.1, 0.0};
-  const Vector2d ends[4][2] = {{{4, -1}, {4, 1}}, {{-4, 1}, {-4, -1}}, {{-1, 1}, {1, 1}},
-                               {{1, -1}, {-1, -1}}};
+  const Vector2d ends[4][2] = {
+      {{4, -1}, {4, 1}}, {{-4, 1}, {-4, -1}}, {{-1, 1}, {1, 1}}, {{1, -1}, {-1, -1}}};
   const Vector2d nearer[4] = {{-1, 0}, {0, 0}, {0, -1}, {0, 0}};
   std::vector<RltPlane> planes;
   std::vector<Placement> mapped(4);
@@ -413,15 +418,15 @@ TEST(GlobalMap, AGroupMadeAfterTheMotionModelIsPlacedFromAPoseTheWallsFixed) {
   // x = 5 end), the jamb -pi/2.
   ASSERT_NEAR(std::cos(piece.Latest().Alpha()), -1.0, 1e-9);
   ASSERT_GT(piece.Latest().edge[0].x(), piece.Latest().edge[1].x());
-  state.planes.emplace(0, std::move(left));
-  state.planes.emplace(1, std::move(piece));
-  state.planes.emplace(2, std::move(jamb));
+  state.store.planes.emplace(0, std::move(left));
+  state.store.planes.emplace(1, std::move(piece));
+  state.store.planes.emplace(2, std::move(jamb));
   Placement line;
   line.alpha = 0.0, line.point = {0, 1}, line.known = Known::kLine;
   Placement end3;
   end3.alpha = M_PI, end3.point = {3, -1}, end3.ref = 1, end3.known = Known::kPoint;
-  state.global = {{0, line}, {1, end3}};
-  state.placed_by = {{0, 0}, {1, 0}};
+  state.world.global = {{0, line}, {1, end3}};
+  state.world.placed_by = {{0, 0}, {1, 0}};
   Group first;
   first.members = {0, 1};
   first.dirty = false;
@@ -440,15 +445,15 @@ TEST(GlobalMap, AGroupMadeAfterTheMotionModelIsPlacedFromAPoseTheWallsFixed) {
   rel_jamb.alpha = M_PI / 2, rel_jamb.point = {-1, 0}, rel_jamb.ref = 0;
   rel_jamb.known = Known::kPoint;
   made_later.relative.members = {{0, rel_line}, {1, rel_end5}, {2, rel_jamb}};
-  state.groups = {first, made_later};
-  for (auto& [id, plane] : state.planes) {
+  state.grouping.groups = {first, made_later};
+  for (auto& [id, plane] : state.store.planes) {
     plane.groups = {id == 2 ? 1 : 0};
     if (id != 2) plane.groups.push_back(1);
   }
-  BuildGlobalMap(state, 1, MapperOptions{});
-  ASSERT_TRUE(state.global.count(2));
-  EXPECT_NEAR(state.global.at(2).point.x(), 6.0, 1e-6);
-  EXPECT_NEAR(state.global.at(2).point.y(), -1.0, 1e-6);
+  BuildGlobalMap(GlobalInputs(state), 1, MapperOptions{}, state.grouping, state.world);
+  ASSERT_TRUE(state.world.global.count(2));
+  EXPECT_NEAR(state.world.global.at(2).point.x(), 6.0, 1e-6);
+  EXPECT_NEAR(state.world.global.at(2).point.y(), -1.0, 1e-6);
 }
 
 TEST(Mapper, PlaneLeavingAndReenteringIsTheSameRltplane) {
@@ -464,10 +469,10 @@ TEST(Mapper, PlaneLeavingAndReenteringIsTheSameRltplane) {
   for (size_t k = 0; k < route.size(); ++k) {
     const PoseEstimate est = mapper.Process(static_cast<int64_t>(k), segmenter.Planes(route[k]));
     worst = std::max(worst, (est.pose.Translation() - route[k].Translation()).norm());
-    if (k == half) planes_after_first = mapper.State().planes.size();
+    if (k == half) planes_after_first = mapper.State().store.planes.size();
   }
   EXPECT_LT(worst, 0.02);
-  EXPECT_EQ(mapper.State().planes.size(), planes_after_first);
+  EXPECT_EQ(mapper.State().store.planes.size(), planes_after_first);
 }
 
 // §II.C: an edge cut by the view is no wall end, and the view's range is learnt from the edges
@@ -484,9 +489,9 @@ TEST(Mapper, SightingsStoredBeforeTheRangeWasLearntHaveTheirRangeEndsCut) {
   testing::IdealSegmenter segmenter(hallway, view);
   Mapper mapper;
   for (int64_t k = 0; k < 60; ++k) mapper.Process(k, segmenter.Planes({0.03 * k, 0.0, 0.0}));
-  ASSERT_EQ(mapper.State().planes.size(), 2u);
+  ASSERT_EQ(mapper.State().store.planes.size(), 2u);
   int early = 0;
-  for (const auto& [id, plane] : mapper.State().planes) {
+  for (const auto& [id, plane] : mapper.State().store.planes) {
     for (const Observation& obs : plane.Observations()) {
       for (int e = 0; e < 2; ++e) {
         if (obs.edge[e].norm() < 5.5) continue;  // the near end, where the field of view cuts
@@ -506,15 +511,15 @@ TEST(MarkViewCuts, SightingsKeptByGroupsAreCutWithTheirObservations) {
   See(&state, 0, 1, {2.0, 1.0}, {std::sqrt(35.0), 1.0});
   See(&state, 0, 2, {2.0, 1.0}, {std::sqrt(35.0), 1.0});
   state.trajectory.poses[1] = state.trajectory.poses[2] = {0.0, 0.0, 0.0};
-  const Observation& first = state.planes.at(0).Observations().front();
+  const Observation& first = state.store.planes.at(0).Observations().front();
   const int far = first.edge[0].norm() > first.edge[1].norm() ? 0 : 1;
   Group group;
   group.members = {0};
   group.seen[0] = SeenFrom(first, state.trajectory.poses[1]);
-  group.seen_fixed[0] = SeenFrom(state.planes.at(0).Latest(), state.trajectory.poses[2]);
+  group.seen_fixed[0] = SeenFrom(state.store.planes.at(0).Latest(), state.trajectory.poses[2]);
   group.shows_end[{0, far, 2}] = true;
   group.dirty = false;
-  state.groups.push_back(group);
+  state.grouping.groups.push_back(group);
   // The view cuts edges at 45 degrees at any distance; only then does the range pile up.
   LearnedFrustum unlearnt, learnt;
   for (int k = 0; k < 64; ++k) {
@@ -525,13 +530,13 @@ TEST(MarkViewCuts, SightingsKeptByGroupsAreCutWithTheirObservations) {
   }
   ASSERT_TRUE(std::isinf(unlearnt.RangeLimit()));
   ASSERT_NEAR(learnt.RangeLimit(), 6.0, 0.1);
-  EXPECT_EQ(MarkViewCuts(unlearnt, state), 0);
-  EXPECT_EQ(MarkViewCuts(learnt, state), 2);
-  for (const Observation& obs : state.planes.at(0).Observations()) {
+  EXPECT_EQ(MarkViewCuts(unlearnt, state.store, state.grouping), 0);
+  EXPECT_EQ(MarkViewCuts(learnt, state.store, state.grouping), 2);
+  for (const Observation& obs : state.store.planes.at(0).Observations()) {
     EXPECT_TRUE(obs.cut[far]);
     EXPECT_FALSE(obs.cut[1 - far]);
   }
-  const Group& g = state.groups.front();
+  const Group& g = state.grouping.groups.front();
   EXPECT_TRUE(g.seen.at(0).cut[far]);
   EXPECT_TRUE(g.seen_fixed.at(0).cut[far]);
   EXPECT_FALSE(g.seen_fixed.at(0).cut[1 - far]);
@@ -544,7 +549,7 @@ TEST(Mapper, RepeatedOrOldIterationsAreIgnored) {
   mapper.Process(5, {Wall({3, -1}, {3, 1})});
   const PoseEstimate est = mapper.Process(5, {Wall({3, -1}, {3, 1})});
   EXPECT_EQ(est.status, PoseStatus::kLost);
-  EXPECT_EQ(mapper.State().planes.at(0).Count(), 1);
+  EXPECT_EQ(mapper.State().store.planes.at(0).Count(), 1);
 }
 
 }  // namespace

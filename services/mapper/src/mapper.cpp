@@ -30,7 +30,7 @@ struct Mapper::Steps {
   LearnedFrustum frustum;
   MotionModel motion;
   Localiser localiser;
-  geometry::Pose2 pose;        // the last iteration's pose (the start pose before the first)
+  geometry::Pose2 pose;  // the last iteration's pose (the start pose before the first)
   int64_t last_iteration = -1;
   // The frustum's range limit the stored edges were last judged against (MarkViewCuts).
   double judged_range_limit = std::numeric_limits<double>::infinity();
@@ -71,36 +71,47 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
       Observe(iteration, planes, options_.registration, &s.frustum);
   if (s.frustum.RangeLimit() < s.judged_range_limit) {
     s.judged_range_limit = s.frustum.RangeLimit();
-    MarkViewCuts(s.frustum, state);
+    MarkViewCuts(s.frustum, state.store, state.grouping);
   }
   state.angular_step = s.frustum.AngularStep();  // for the groups' priors (group_prior.cpp)
 
   const RegistrationFrame frame{iteration, previous, s.pose, motion, s.localiser.Held()};
+  // §II.A each plane to its rltplane, to the global map's (backtracking), or a new one.
   const Registered registered =
-      RegisterPlanes(frame, observations, s.frustum, s.motion, options_, state);  // §II.A
+      RegisterPlanes(frame, observations, s.frustum, s.motion, options_, state.grouping,
+                     state.world, state.trajectory, state.store);
   const std::vector<int64_t>& visible = registered.visible;
-  UpdateGroups(state, visible, iteration, options_.grouping);                     // §II.B
-  Regroup(state, iteration, options_);                                            // §II.F
-  CompareVisible(iteration, visible, options_, state);                            // §II.C
-  BuildNextGlobalMap(state, options_);                                            // §II.D
-  PoseEstimate estimate = s.localiser.Localise(
-      {iteration, previous, s.pose, motion, &visible}, state, s.frustum, s.motion);  // §II.D-E
-  AddPoseTie(registered.loop, estimate, options_.graph, state);  // §II.D loop closing
+  // §II.B grouping, §II.F regrouping.
+  UpdateGroups(registered.created, visible, iteration, options_.grouping, state.grouping,
+               state.store);
+  Regroup(iteration, options_, state.grouping, state.store, state.comparisons, state.world);
+  // §II.C the comparisons; the groups they changed are built again (§II.D).
+  state.grouping.MarkDirty(
+      CompareVisible(iteration, visible, options_, state.grouping, state.store, state.comparisons));
+  // §II.D the next relative map, and the global map chained from it.
+  BuildNextGlobalMap(
+      {state.store, state.comparisons, state.trajectory, state.first_iteration, state.angular_step},
+      options_, state.grouping, state.world);
+  // §II.D-E the pose from the global map, and the loop it closes (§II.A end).
+  PoseEstimate estimate =
+      s.localiser.Localise({iteration, previous, s.pose, motion, &visible, state.first_iteration},
+                           state.store, state.world, state.trajectory, s.frustum, s.motion);
+  AddPoseTie(registered.loop, estimate, options_.graph, state.grouping, state.world);
   estimate.odometry_refused = odometry_refused;
 
   const bool fixed = estimate.status == PoseStatus::kTracking;
   state.trajectory.Record(iteration, estimate.pose, fixed);  // §II.E
   if (fixed) s.motion.Fixed();
   s.pose = estimate.pose;
-  NoteSightingPose(visible, s.pose, state);
-  DropOldObservations(state, visible, iteration, options_);  // bounded memory (§II.F)
+  NoteSightingPose(visible, s.pose, state.store);
+  DropOldObservations(visible, iteration, options_, state.store);  // bounded memory (§II.F)
   state.trajectory.ForgetBefore(iteration - options_.motion.pose_history);
   return estimate;
 }
 
 bool Mapper::TakeMapChanged() {
-  const bool changed = steps_->state.map_changed;
-  steps_->state.map_changed = false;
+  const bool changed = steps_->state.world.changed;
+  steps_->state.world.changed = false;
   return changed;
 }
 
@@ -109,12 +120,13 @@ MapSnapshot Mapper::Map() const { return PublishedMap(steps_->state, options_); 
 MapperStats Mapper::Stats() const {
   const MapperState& state = steps_->state;
   MapperStats stats;
-  stats.planes = state.planes.size();
-  for (const auto& [id, plane] : state.planes) stats.observations += plane.Observations().size();
-  stats.comparisons = state.comparisons.size();
-  stats.groups = state.groups.size();
-  stats.map_planes = state.global.size();
-  stats.graph_solves = state.graph_solves;
+  stats.planes = state.store.planes.size();
+  for (const auto& [id, plane] : state.store.planes)
+    stats.observations += plane.Observations().size();
+  stats.comparisons = state.comparisons.pairs.size();
+  stats.groups = state.grouping.groups.size();
+  stats.map_planes = state.world.global.size();
+  stats.graph_solves = state.world.graph_solves;
   return stats;
 }
 

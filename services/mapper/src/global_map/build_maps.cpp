@@ -4,10 +4,11 @@
 
 namespace relplane::mapper {
 
-void BuildNextGlobalMap(MapperState& state, const MapperOptions& options) {
-  for (size_t g = 0; g < state.groups.size(); ++g) {
-    if (state.groups[g].dirty) {
-      BuildGlobalMap(state, g, options);
+void BuildNextGlobalMap(const GlobalMapInputs& in, const MapperOptions& options, Grouping& grouping,
+                        WorldMap& world) {
+  for (size_t g = 0; g < grouping.groups.size(); ++g) {
+    if (grouping.groups[g].dirty) {
+      BuildGlobalMap(in, g, options, grouping, world);
       return;
     }
   }

@@ -3,11 +3,14 @@
 // (`dirty`) is built again, and the global map re-chained from it (BuildGlobalMap). One group per
 // iteration: the next dirty one waits for the next iteration.
 
+#include "global_map/inputs.hpp"
+#include "global_map/world_map.hpp"
+#include "grouping/group.hpp"
 #include "relplane/mapper/options.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
-void BuildNextGlobalMap(MapperState& state, const MapperOptions& options);
+void BuildNextGlobalMap(const GlobalMapInputs& in, const MapperOptions& options, Grouping& grouping,
+                        WorldMap& world);
 
 }  // namespace relplane::mapper

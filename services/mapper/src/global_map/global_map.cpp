@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "global_map/group_prior.hpp"
-#include "localisation/pose_solver.hpp"
 #include "global_map/pose_graph.hpp"
 #include "global_map/relative_map.hpp"
+#include "localisation/pose_solver.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -50,15 +50,15 @@ double LineWeight(double lever, double length) {
 // learnt) is later known by the door-side end of its piece: that end lay 2.6 m along the wall
 // from the first sighting's, and the first group was placed 2.6 m off (an unseen office, 70
 // degree sensor).
-bool FirstSightingShowsEnd(const MapperState& state, const RltPlane& plane, const SeenWall& first,
-                           int ref) {
+bool FirstSightingShowsEnd(const Trajectory& trajectory, const RltPlane& plane,
+                           const SeenWall& first, int ref) {
   if (ref < 0 || first.cut[ref]) return false;
   const auto& all = plane.Observations();
   const Vector2d t = DirectionOf(first.alpha);
   for (size_t i = all.size(); i > 0; --i) {
     const Observation& obs = all[i - 1];
-    const auto pose = state.trajectory.poses.find(obs.iteration);
-    if (obs.cut[ref] || pose == state.trajectory.poses.end()) continue;
+    const auto pose = trajectory.poses.find(obs.iteration);
+    if (obs.cut[ref] || pose == trajectory.poses.end()) continue;
     return std::abs(t.dot(pose->second * obs.edge[ref] - first.edge[ref])) <= kFirstEndAgreement;
   }
   return true;  // nothing seen since contradicts it
@@ -224,15 +224,16 @@ Placement PlacementOf(const SeenWall& seen, int ref) {
   return p;
 }
 
-SeenWall EndSeenFromFixedPoses(const MapperState& state, const RltPlane& plane, int ref) {
+SeenWall EndSeenFromFixedPoses(const Trajectory& trajectory, const RltPlane& plane, int ref) {
   SeenWall latest;
   if (ref < 0) return latest;
   std::vector<double> along;  // each sighting's end, along the wall from the latest one's
   const auto& all = plane.Observations();
   for (size_t i = all.size(); i > 0; --i) {
     const Observation& obs = all[i - 1];
-    const auto pose = state.trajectory.poses.find(obs.iteration);
-    if (obs.cut[ref] || pose == state.trajectory.poses.end() || state.trajectory.fixed.count(obs.iteration) == 0) {
+    const auto pose = trajectory.poses.find(obs.iteration);
+    if (obs.cut[ref] || pose == trajectory.poses.end() ||
+        trajectory.fixed.count(obs.iteration) == 0) {
       continue;
     }
     const SeenWall seen = SeenFrom(obs, pose->second);
@@ -251,7 +252,7 @@ Placement PlacementOf(const Observation& obs, const Pose2& pose, int ref) {
   return PlacementOf(SeenFrom(obs, pose), ref);
 }
 
-void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& placed,
+void WallEnds(const Trajectory& trajectory, const RltPlane& plane, const Placement& placed,
               Vector2d* lo_out, Vector2d* hi_out) {
   const Vector2d t = DirectionOf(placed.alpha);
   const double length = plane.Length();
@@ -267,9 +268,9 @@ void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& 
     lo = hi = placed.point;
     // Its extent as last seen, from the pose then.
     const Observation& last = plane.Latest();
-    auto pose = state.trajectory.poses.find(last.iteration);
-    if (pose != state.trajectory.poses.end() || plane.latest_pose_known) {
-      const Pose2& from = pose != state.trajectory.poses.end() ? pose->second : plane.latest_pose;
+    auto pose = trajectory.poses.find(last.iteration);
+    if (pose != trajectory.poses.end() || plane.latest_pose_known) {
+      const Pose2& from = pose != trajectory.poses.end() ? pose->second : plane.latest_pose;
       const Vector2d a = from * last.edge[0], b = from * last.edge[1];
       lo = placed.point + t * t.dot(a - placed.point);
       hi = placed.point + t * t.dot(b - placed.point);
@@ -282,15 +283,15 @@ void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& 
 
 // Places the members of group `g` not yet on the global map (hard rule: the first group to
 // place a plane wins, unless a later one knows more), from the group's placement.
-void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
-  Group& group = state.groups[g];
+void PlaceMembers(const GlobalMapInputs& in, Group& group, const MapperOptions& options,
+                  WorldMap& world) {
   for (const auto& [id, rel] : group.relative.members) {
     // Kept now, while the observation is there, for when this group places it.
-    if (rel.known == Known::kAngle) LineWhenMade(state, g, id, options);
-    auto it = state.global.find(id);
+    if (rel.known == Known::kAngle) LineWhenMade(in, group, id, options);
+    auto it = world.global.find(id);
     // Hard chaining: the first group to place a plane wins, unless a later one knows more.
     // A later group that found the plane's other edge static adds that end to the map.
-    if (it != state.global.end() && it->second.known >= rel.known) {
+    if (it != world.global.end() && it->second.known >= rel.known) {
       Placement& placed = it->second;
       if (placed.known == Known::kPoint && rel.known == Known::kPoint && rel.ref != placed.ref &&
           !placed.has_other) {
@@ -298,11 +299,11 @@ void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
         const Vector2d w = group.placement * rel.point;
         placed.other = placed.point + t * t.dot(w - placed.point);
         placed.has_other = true;
-        placed.other_by = static_cast<int64_t>(g);
+        placed.other_by = group.id;
       }
       continue;
     }
-    Placement world = Apply(group.placement, rel);
+    Placement placement = Apply(group.placement, rel);
     if (rel.known == Known::kAngle) {
       // No comparison pins its line yet: the line as seen when the group was made, from the pose
       // then (§II.A end: "transformed using current position"). In the first group that is one
@@ -315,47 +316,49 @@ void PlaceMembers(MapperState& state, size_t g, const MapperOptions& options) {
       // better than comparisons that do not even pin its line: turned to those, an office's
       // wall went 1.7 degrees off, the next group was placed through it and a room's walls came
       // out 7 cm off (office_other_sensor at 1 cm, seed 22).
-      const double alpha = world.alpha;
-      world = PlacementOf(LineWhenMade(state, g, id, options), -1);
-      if (g == 0) world.alpha = alpha;
+      const double alpha = placement.alpha;
+      placement = PlacementOf(LineWhenMade(in, group, id, options), -1);
+      if (group.id == 0) placement.alpha = alpha;
     }
-    state.global[id] = world;
-    state.chained_alpha[id] = world.alpha;
-    state.placed_by[id] = static_cast<int64_t>(g);
+    world.global[id] = placement;
+    world.chained_alpha[id] = placement.alpha;
+    world.placed_by[id] = group.id;
   }
 }
 
-void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options) {
+void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions& options,
+                    Grouping& grouping, WorldMap& world) {
   // Forget what the re-placed groups placed.
   std::set<size_t> earlier;  // groups before `from` that share a plane a re-placed group placed
-  for (auto it = state.placed_by.begin(); it != state.placed_by.end();) {
+  for (auto it = world.placed_by.begin(); it != world.placed_by.end();) {
     if (static_cast<size_t>(it->second) >= from) {
-      if (const RltPlane* plane = state.Plane(it->first)) {
+      if (const RltPlane* plane = in.store.Plane(it->first)) {
         for (int64_t g : plane->groups) {
           if (static_cast<size_t>(g) < from) earlier.insert(static_cast<size_t>(g));
         }
       }
-      state.global.erase(it->first);
-      it = state.placed_by.erase(it);
+      world.global.erase(it->first);
+      it = world.placed_by.erase(it);
     } else {
       ++it;
     }
   }
-  for (auto& [id, placed] : state.global) {
+  for (auto& [id, placed] : world.global) {
     if (placed.has_other && static_cast<size_t>(placed.other_by) >= from) placed.has_other = false;
   }
   // A plane an earlier group placed and a re-placed one took over (it knew more) goes back to
   // the earlier group's placement: otherwise the re-placed group lost that link and was placed
   // without it (§II.D chains groups through shared planes), from its members' first sightings
   // when it had no other (a door jamb's group turned 3.7 degrees in one iteration).
-  for (size_t g : earlier) PlaceMembers(state, g, options);
+  for (size_t g : earlier) PlaceMembers(in, grouping.groups[g], options, world);
   // Those go back with their chained orientations: they are refined in this pass as well.
   const size_t refined_from = earlier.empty() ? from : std::min(from, *earlier.begin());
   const Pose2 start{options.start_pose.x, options.start_pose.y, options.start_pose.yaw};
-  for (size_t g = from; g < state.groups.size(); ++g) {
-    Group& group = state.groups[g];
+  for (size_t g = from; g < grouping.groups.size(); ++g) {
+    Group& group = grouping.groups[g];
     if (group.dirty) {
-      group.relative = BuildRelativeMap(group, state, options.comparison);
+      group.relative =
+          BuildRelativeMap(group, {in.store, in.comparisons, world}, options.comparison);
       group.dirty = false;
     }
     // Through its links as every comparison between mapped walls turns them, as localisation
@@ -367,23 +370,23 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
     // only the walls placed in this pass: without a link among them it would change nothing.
     bool link_replaced = false;
     for (const auto& [id, rel] : group.relative.members) {
-      const auto by = state.placed_by.find(id);
+      const auto by = world.placed_by.find(id);
       link_replaced |=
-          by != state.placed_by.end() && static_cast<size_t>(by->second) >= refined_from;
+          by != world.placed_by.end() && static_cast<size_t>(by->second) >= refined_from;
     }
-    if (link_replaced) RefineGlobalOrientations(state, refined_from);
+    if (link_replaced) RefineGlobalOrientations(in, grouping, refined_from, world);
     std::vector<Link> links;
     for (const auto& [id, rel] : group.relative.members) {
-      auto it = state.global.find(id);
-      if (it != state.global.end()) links.push_back({rel, it->second, state.Plane(id)});
+      auto it = world.global.find(id);
+      if (it != world.global.end()) links.push_back({rel, it->second, in.store.Plane(id)});
     }
     // Prior: the basis as seen when the group was made, from the pose then. It only decides
     // directions the links leave open. The basis may change as evidence grows, so the
     // sighting is kept, not the frame.
     Prior prior;
     prior.pose = start;
-    if (state.Plane(group.relative.basis) != nullptr) {
-      prior = PriorWithMemberLines(state, g, options);
+    if (in.store.Plane(group.relative.basis) != nullptr) {
+      prior = PriorWithMemberLines(in, group, options);
     }
     if (links.empty()) {
       // §II.D "the first grouping can be placed on the global map by comparing the relative
@@ -391,16 +394,16 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
       // Only observations made from the start pose itself when there are any.
       bool any_at_start = false;
       for (const auto& [id, rel] : group.relative.members) {
-        any_at_start |= state.Plane(id)->FirstSeen() == state.first_iteration;
+        any_at_start |= in.store.Plane(id)->FirstSeen() == in.first_iteration;
       }
       // Each plane's first sighting is kept with the plane: its observations may be gone.
       for (const auto& [id, rel] : group.relative.members) {
-        const RltPlane* plane = state.Plane(id);
-        if (any_at_start && plane->FirstSeen() != state.first_iteration) continue;
+        const RltPlane* plane = in.store.Plane(id);
+        if (any_at_start && plane->FirstSeen() != in.first_iteration) continue;
         const Observation& first = plane->Observations().front();
         const SeenWall seen = plane->first_seen.valid
                                   ? plane->first_seen
-                                  : SeenFrom(first, PoseAt(state, first.iteration, options));
+                                  : SeenFrom(first, PoseAt(in, first.iteration, options));
         // Its end too where the sighting shows it, but not where the samples along the wall
         // landed too far apart there (CoarselySampled): seen 5-6 m off at a grazing angle, the
         // ends of a side wall's two pieces beside a door recess were sampled 23 and 31 cm apart
@@ -409,8 +412,8 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
         // run (hallway_out_and_back, σ = 1 cm, seed 164).
         // Its line is taken then, and the prior's ends, each as seen most finely, place it along.
         const int ref = rel.known == Known::kPoint &&
-                                FirstSightingShowsEnd(state, *plane, seen, rel.ref) &&
-                                !CoarselySampled(state, seen, rel.ref)
+                                FirstSightingShowsEnd(in.trajectory, *plane, seen, rel.ref) &&
+                                !CoarselySampled(in, seen, rel.ref)
                             ? rel.ref
                             : -1;
         links.push_back({rel, PlacementOf(seen, ref), plane,
@@ -420,31 +423,32 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
     group.placement = Solve(links, prior, options.localisation.prior_weight);
     group.chained = group.placement;
     group.has_chained = true;
-    PlaceMembers(state, g, options);
-    group.loop_evidence = GroupLoopEvidence(state, g, options.grouping.recent_groups);
+    PlaceMembers(in, group, options, world);
+    group.loop_evidence = GroupLoopEvidence(in.store, grouping, g, options.grouping.recent_groups);
   }
   // Soft-linked groups: when a loop closes (or a closing tie learns more), the group placements
   // are solved together over the graph of ties and every group re-places its members.
   size_t refine_from = refined_from;
   int evidence = 0;
-  for (const Group& group : state.groups) evidence += group.loop_evidence;
-  evidence += state.pose_ties_made;
-  if (options.graph.enabled && evidence > state.loop_evidence) {
-    state.loop_evidence = evidence;
-    const PoseGraphResult solved = OptimiseGroupPlacements(state, options.graph);
-    ++state.graph_solves;
+  for (const Group& group : grouping.groups) evidence += group.loop_evidence;
+  evidence += world.pose_ties_made;
+  if (options.graph.enabled && evidence > world.loop_evidence) {
+    world.loop_evidence = evidence;
+    const PoseGraphResult solved = OptimiseGroupPlacements(in, world, options.graph, grouping);
+    ++world.graph_solves;
     if (solved.cost_after < solved.cost_before) {
-      state.global.clear();
-      state.placed_by.clear();
-      for (size_t g = 0; g < state.groups.size(); ++g) PlaceMembers(state, g, options);
+      world.global.clear();
+      world.placed_by.clear();
+      for (Group& group : grouping.groups) PlaceMembers(in, group, options, world);
       refine_from = 0;
     }
   }
-  RefineGlobalOrientations(state, refine_from);
-  state.map_changed = true;
+  RefineGlobalOrientations(in, grouping, refine_from, world);
+  world.changed = true;
 }
 
-void RefineGlobalOrientations(MapperState& state, size_t from) {
+void RefineGlobalOrientations(const GlobalMapInputs& in, const Grouping& grouping, size_t from,
+                              WorldMap& world) {
   // Least squares on the corrections from the chained orientations, as RefineOrientations does
   // within a group, over every comparison between two planes on the global map; the first
   // group's planes are held (§II.D: it is placed from the start pose). Hard chaining (§II.D)
@@ -462,11 +466,11 @@ void RefineGlobalOrientations(MapperState& state, size_t from) {
   // Called before every re-placed group is solved (BuildGlobalMap): the cost follows those
   // groups, not the map, and sorted vectors stand in for trees.
   std::vector<int64_t> ids;
-  for (size_t g = std::max<size_t>(from, 1); g < state.groups.size(); ++g) {
-    for (const auto& [id, rel] : state.groups[g].relative.members) {
-      const auto by = state.placed_by.find(id);
-      if (by == state.placed_by.end() || static_cast<size_t>(by->second) != g) continue;
-      if (state.chained_alpha.count(id)) ids.push_back(id);
+  for (size_t g = std::max<size_t>(from, 1); g < grouping.groups.size(); ++g) {
+    for (const auto& [id, rel] : grouping.groups[g].relative.members) {
+      const auto by = world.placed_by.find(id);
+      if (by == world.placed_by.end() || static_cast<size_t>(by->second) != g) continue;
+      if (world.chained_alpha.count(id)) ids.push_back(id);
     }
   }
   std::sort(ids.begin(), ids.end());
@@ -478,13 +482,13 @@ void RefineGlobalOrientations(MapperState& state, size_t from) {
   };
   // A solved plane from its chained orientation, a held one as it stands.
   auto value = [&](int64_t id, int k) {
-    return k >= 0 ? state.chained_alpha.at(id) : state.global.at(id).alpha;
+    return k >= 0 ? world.chained_alpha.at(id) : world.global.at(id).alpha;
   };
   // Sparse: a plane is compared only with the members of its groups (§II.C).
   std::vector<PairKey> pairs;
   for (int64_t id : ids) {
-    for (int64_t g : state.Plane(id)->groups) {
-      for (int64_t other : state.groups[g].members) {
+    for (int64_t g : in.store.Plane(id)->groups) {
+      for (int64_t other : grouping.groups[g].members) {
         if (other != id) pairs.push_back(KeyOf(id, other));
       }
     }
@@ -494,8 +498,8 @@ void RefineGlobalOrientations(MapperState& state, size_t from) {
   std::vector<Eigen::Triplet<double>> a;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
   for (const PairKey& key : pairs) {
-    const Comparison* cmp = state.FindComparison(key.first, key.second);
-    if (cmp == nullptr || !state.global.count(key.first) || !state.global.count(key.second)) {
+    const Comparison* cmp = in.comparisons.Find(key.first, key.second);
+    if (cmp == nullptr || !world.global.count(key.first) || !world.global.count(key.second)) {
       continue;
     }
     const double w = cmp->PieceInformation();
@@ -516,7 +520,7 @@ void RefineGlobalOrientations(MapperState& state, size_t from) {
   const Eigen::VectorXd dx = solver.solve(b);
   if (!dx.allFinite()) return;
   for (int k = 0; k < n; ++k) {
-    state.global.at(ids[k]).alpha = geometry::WrapAngle(value(ids[k], k) + dx(k));
+    world.global.at(ids[k]).alpha = geometry::WrapAngle(value(ids[k], k) + dx(k));
   }
 }
 

@@ -1,12 +1,18 @@
 #pragma once
 // §II.D Global map: the first group is anchored at the start pose by comparing its relative map
-// to its rltplanes' first observations (kept with each plane as SeenWall); every later group is placed through the rltplanes it
-// shares with groups already placed (the link planes), and places its other members.
+// to its rltplanes' first observations (kept with each plane as SeenWall); every later group is
+// placed through the rltplanes it shares with groups already placed (the link planes), and places
+// its other members.
 
 #include <cstddef>
 
+#include "global_map/inputs.hpp"
+#include "global_map/placement.hpp"
+#include "global_map/world_map.hpp"
+#include "grouping/group.hpp"
+#include "motion/trajectory.hpp"
+#include "plane_store/rltplane.hpp"
 #include "relplane/mapper/options.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
@@ -21,17 +27,18 @@ Placement PlacementOf(const SeenWall& seen, int ref);
 // The latest sighting of `plane` from a pose the walls fixed that shows its end `ref` (not cut
 // by the view), with that end moved to the median of all such sightings' (one outlier among
 // them does not decide); invalid when there is none.
-SeenWall EndSeenFromFixedPoses(const MapperState& state, const RltPlane& plane, int ref);
+SeenWall EndSeenFromFixedPoses(const Trajectory& trajectory, const RltPlane& plane, int ref);
 
 // The mapped wall's two ends (lo, hi along its direction): its static edges where known, else
 // its length from the known one; for a wall known only by its line, the extent last seen, from
 // the pose then.
-void WallEnds(const MapperState& state, const RltPlane& plane, const Placement& placed,
+void WallEnds(const Trajectory& trajectory, const RltPlane& plane, const Placement& placed,
               Eigen::Vector2d* lo, Eigen::Vector2d* hi);
 
 // Re-places groups `from`, `from + 1`, ... (hard chaining: a change in one group moves every
 // later one). Placements made by those groups are recomputed.
-void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& options);
+void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions& options,
+                    Grouping& grouping, WorldMap& world);
 
 // Soft-linked orientations (the paper's future work, §V): each global plane's orientation from
 // every comparison between planes on the global map, not only those of the group that placed
@@ -40,6 +47,7 @@ void BuildGlobalMap(MapperState& state, size_t from, const MapperOptions& option
 // the same way on one side; a later group holding the jamb on the other side balances them.
 // Only the planes groups `from`, `from + 1`, ... placed are solved, against the others as they
 // stand: the map grows with the run while what one iteration re-places does not.
-void RefineGlobalOrientations(MapperState& state, size_t from = 0);
+void RefineGlobalOrientations(const GlobalMapInputs& in, const Grouping& grouping, size_t from,
+                              WorldMap& world);
 
 }  // namespace relplane::mapper

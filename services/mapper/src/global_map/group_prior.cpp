@@ -19,39 +19,39 @@ constexpr double kEndStill = 0.05;
 
 }  // namespace
 
-Pose2 PoseAt(const MapperState& state, int64_t iteration, const MapperOptions& options) {
-  auto it = state.trajectory.poses.find(iteration);
-  if (it != state.trajectory.poses.end()) return it->second;
+Pose2 PoseAt(const GlobalMapInputs& in, int64_t iteration, const MapperOptions& options) {
+  auto it = in.trajectory.poses.find(iteration);
+  if (it != in.trajectory.poses.end()) return it->second;
   return {options.start_pose.x, options.start_pose.y, options.start_pose.yaw};
 }
 
 namespace {
 
 // The plane's latest observation up to `upto` whose pose is known (its first when `first`).
-const Observation& ObservedWithPose(const RltPlane& plane, const MapperState& state, int64_t upto,
+const Observation& ObservedWithPose(const RltPlane& plane, const GlobalMapInputs& in, int64_t upto,
                                     bool first) {
   const auto& all = plane.Observations();
   if (first) return all.front();
   for (size_t i = plane.LowerBound(upto + 1); i > 0; --i) {
-    if (state.trajectory.poses.count(all[i - 1].iteration)) return all[i - 1];
+    if (in.trajectory.poses.count(all[i - 1].iteration)) return all[i - 1];
   }
   return all.front();
 }
 
-// Member `id` of group `g` as seen when the group was made (for the first group, as first
+// Member `id` of `group` as seen when the group was made (for the first group, as first
 // seen), kept in the group: the group can be placed again once the observation is dropped.
 // Kept only once the pose of the group's first iteration is known: a group is built before its
 // iteration is localised, and until then the latest sighting with a known pose is an older,
 // worse one (keeping it took noise-free office from 9 mm ATE to 30 mm).
-SeenWall SeenWhenMade(MapperState& state, size_t g, int64_t id, const MapperOptions& options) {
-  Group& group = state.groups[g];
+SeenWall SeenWhenMade(const GlobalMapInputs& in, Group& group, int64_t id,
+                      const MapperOptions& options) {
   SeenWall& kept = group.seen[id];
   if (kept.valid) return kept;
-  const RltPlane& plane = *state.Plane(id);
-  if (g == 0 && plane.first_seen.valid) return kept = plane.first_seen;
-  const Observation& obs = ObservedWithPose(plane, state, group.created, g == 0);
-  const SeenWall seen = SeenFrom(obs, PoseAt(state, obs.iteration, options));
-  if (state.trajectory.poses.count(group.created) != 0) kept = seen;
+  const RltPlane& plane = *in.store.Plane(id);
+  if (group.id == 0 && plane.first_seen.valid) return kept = plane.first_seen;
+  const Observation& obs = ObservedWithPose(plane, in, group.created, group.id == 0);
+  const SeenWall seen = SeenFrom(obs, PoseAt(in, obs.iteration, options));
+  if (in.trajectory.poses.count(group.created) != 0) kept = seen;
   return seen;
 }
 
@@ -71,14 +71,14 @@ constexpr double kAlongOpen = 0.7071;
 
 }  // namespace
 
-SeenWall LineWhenMade(MapperState& state, size_t g, int64_t id, const MapperOptions& options) {
-  Group& group = state.groups[g];
-  const RltPlane& plane = *state.Plane(id);
+SeenWall LineWhenMade(const GlobalMapInputs& in, Group& group, int64_t id,
+                      const MapperOptions& options) {
+  const RltPlane& plane = *in.store.Plane(id);
   const int64_t upto = plane.Latest().iteration;
   auto kept = group.seen_line.find(id);
   if (kept != group.seen_line.end() && kept->second.first >= upto) return kept->second.second;
-  const SeenWall made = SeenWhenMade(state, g, id, options);
-  if (g == 0) return made;  // the first group's walls are as first seen
+  const SeenWall made = SeenWhenMade(in, group, id, options);
+  if (group.id == 0) return made;  // the first group's walls are as first seen
   const auto& all = plane.Observations();
   struct Sight {
     SeenWall seen;
@@ -87,9 +87,9 @@ SeenWall LineWhenMade(MapperState& state, size_t g, int64_t id, const MapperOpti
   std::vector<Sight> sights;
   for (size_t i = all.size(); i > 0; --i) {
     const Observation& obs = all[i - 1];
-    if (state.trajectory.fixed.count(obs.iteration) == 0) continue;
-    const auto pose = state.trajectory.poses.find(obs.iteration);
-    if (pose == state.trajectory.poses.end()) continue;
+    if (in.trajectory.fixed.count(obs.iteration) == 0) continue;
+    const auto pose = in.trajectory.poses.find(obs.iteration);
+    if (pose == in.trajectory.poses.end()) continue;
     const double offset_var = obs.support > 0 ? obs.rms * obs.rms / obs.support : 0.0;
     sights.push_back({SeenFrom(obs, pose->second), OrientationWeight(obs),
                       1.0 / (offset_var + kPoseNoise * kPoseNoise)});
@@ -128,27 +128,26 @@ SeenWall LineWhenMade(MapperState& state, size_t g, int64_t id, const MapperOpti
   }
   // Kept once the group's iteration is localised, as SeenWhenMade: the poses before it may not
   // all be known yet.
-  if (state.trajectory.poses.count(group.created) != 0) group.seen_line[id] = {upto, fused};
+  if (in.trajectory.poses.count(group.created) != 0) group.seen_line[id] = {upto, fused};
   return fused;
 }
 
 namespace {
 
-// Member `id` of group `g` as last seen before the group was made from a pose the walls fixed
+// Member `id` of `group` as last seen before the group was made from a pose the walls fixed
 // in every direction, kept in the group (invalid when there is none). Poses from the group's
 // first iteration on were solved against its own placement, and one the motion model carried
 // (§II.E) stood still along a direction the walls left open while the sensor moved on.
-const SeenWall& SeenFromFixedPose(MapperState& state, size_t g, int64_t id) {
-  Group& group = state.groups[g];
+const SeenWall& SeenFromFixedPose(const GlobalMapInputs& in, Group& group, int64_t id) {
   auto [kept, inserted] = group.seen_fixed.try_emplace(id);
   if (!inserted) return kept->second;
-  const RltPlane& plane = *state.Plane(id);
+  const RltPlane& plane = *in.store.Plane(id);
   const auto& all = plane.Observations();
   SeenWall& latest = kept->second;
   for (size_t i = plane.LowerBound(group.created); i > 0; --i) {
     const Observation& obs = all[i - 1];
-    if (state.trajectory.fixed.count(obs.iteration) == 0) continue;
-    const SeenWall seen = SeenFrom(obs, state.trajectory.poses.at(obs.iteration));
+    if (in.trajectory.fixed.count(obs.iteration) == 0) continue;
+    const SeenWall seen = SeenFrom(obs, in.trajectory.poses.at(obs.iteration));
     if (!latest.valid) {
       latest = seen;
       continue;
@@ -181,7 +180,7 @@ Pose2 PlacementFromSighting(const SeenWall& seen, const Placement& rel) {
 // (§II.C), and an end seen elsewhere was a segmenter outlier (a corner's end seen once 0.4 m
 // past the corner, from a pose the motion model carried round it, put a group and the whole
 // loop after it 0.4 m off).
-bool ShowsEnd(const MapperState& state, const RltPlane& plane, const SeenWall& seen, int ref,
+bool ShowsEnd(const GlobalMapInputs& in, const RltPlane& plane, const SeenWall& seen, int ref,
               int64_t before) {
   if (ref < 0 || seen.cut[ref]) return false;
   const auto& all = plane.Observations();
@@ -189,9 +188,9 @@ bool ShowsEnd(const MapperState& state, const RltPlane& plane, const SeenWall& s
   std::vector<double> along;  // the end's offset from the sighting's, along the wall
   for (size_t i = plane.LowerBound(before); i > 0; --i) {
     const Observation& obs = all[i - 1];
-    const auto pose = state.trajectory.poses.find(obs.iteration);
-    if (obs.cut[ref] || obs.iteration == seen.iteration || pose == state.trajectory.poses.end() ||
-        state.trajectory.fixed.count(obs.iteration) == 0) {
+    const auto pose = in.trajectory.poses.find(obs.iteration);
+    if (obs.cut[ref] || obs.iteration == seen.iteration || pose == in.trajectory.poses.end() ||
+        in.trajectory.fixed.count(obs.iteration) == 0) {
       continue;
     }
     along.push_back(t.dot(pose->second * obs.edge[ref] - seen.edge[ref]));
@@ -203,14 +202,14 @@ bool ShowsEnd(const MapperState& state, const RltPlane& plane, const SeenWall& s
   return std::abs(median) <= kFirstEndAgreement;
 }
 
-// ShowsEnd for a member of group `g`, judged once: the sightings before the group was made do
+// ShowsEnd for a member of `group`, judged once: the sightings before the group was made do
 // not change.
-bool MemberShowsEnd(MapperState& state, size_t g, int64_t id, const SeenWall& seen, int ref) {
-  Group& group = state.groups[g];
+bool MemberShowsEnd(const GlobalMapInputs& in, Group& group, int64_t id, const SeenWall& seen,
+                    int ref) {
   const auto key = std::make_tuple(id, ref, seen.iteration);
   auto it = group.shows_end.find(key);
   if (it == group.shows_end.end()) {
-    it = group.shows_end.emplace(key, ShowsEnd(state, *state.Plane(id), seen, ref, group.created))
+    it = group.shows_end.emplace(key, ShowsEnd(in, *in.store.Plane(id), seen, ref, group.created))
              .first;
   }
   return it->second;
@@ -218,27 +217,27 @@ bool MemberShowsEnd(MapperState& state, size_t g, int64_t id, const SeenWall& se
 
 // m between the sensor's samples along the wall at end `ref` of `seen`, from the pose it was seen
 // from (EdgeSpacing). Nought while the angle between rays is not known.
-double SpacingAt(const MapperState& state, const SeenWall& seen, int ref) {
-  const auto pose = state.trajectory.poses.find(seen.iteration);
-  if (pose == state.trajectory.poses.end()) return 0.0;
+double SpacingAt(const GlobalMapInputs& in, const SeenWall& seen, int ref) {
+  const auto pose = in.trajectory.poses.find(seen.iteration);
+  if (pose == in.trajectory.poses.end()) return 0.0;
   const Vector2d r = seen.edge[ref] - pose->second.Translation();
-  return EdgeSpacing(state.angular_step, r, std::abs(NormalOf(seen.alpha).dot(r)));
+  return EdgeSpacing(in.angular_step, r, std::abs(NormalOf(seen.alpha).dot(r)));
 }
 
 // Member `id`'s end `ref` as most finely sampled from a pose the walls fixed, up to now, where it
 // stood still since the sighting from a fixed pose before (§II.C: a wall end stands still), and
 // that sighting's spacing. The observations are scanned once each, as they come.
-const SeenWall& FinestEndSighting(MapperState& state, size_t g, int64_t id, int ref,
+const SeenWall& FinestEndSighting(const GlobalMapInputs& in, Group& group, int64_t id, int ref,
                                   double* spacing) {
-  Group::FinestEnd& fine = state.groups[g].finest_end[{id, ref}];
-  const RltPlane& plane = *state.Plane(id);
+  Group::FinestEnd& fine = group.finest_end[{id, ref}];
+  const RltPlane& plane = *in.store.Plane(id);
   const auto& all = plane.Observations();
   for (size_t i = plane.LowerBound(fine.scanned + 1); i < all.size(); ++i) {
     const Observation& obs = all[i];
-    const auto pose = state.trajectory.poses.find(obs.iteration);
-    if (pose == state.trajectory.poses.end()) break;  // this iteration's, not localised yet
+    const auto pose = in.trajectory.poses.find(obs.iteration);
+    if (pose == in.trajectory.poses.end()) break;  // this iteration's, not localised yet
     fine.scanned = obs.iteration;
-    if (state.trajectory.fixed.count(obs.iteration) == 0) continue;
+    if (in.trajectory.fixed.count(obs.iteration) == 0) continue;
     const SeenWall seen = SeenFrom(obs, pose->second);
     const SeenWall before = fine.previous;
     fine.previous = seen;
@@ -246,14 +245,14 @@ const SeenWall& FinestEndSighting(MapperState& state, size_t g, int64_t id, int 
         std::abs(DirectionOf(seen.alpha).dot(seen.edge[ref] - before.edge[ref])) > kEndStill) {
       continue;
     }
-    const double s = SpacingAt(state, seen, ref);
+    const double s = SpacingAt(in, seen, ref);
     if (!fine.seen.valid || s < fine.spacing) fine.seen = seen, fine.spacing = s;
   }
   *spacing = fine.spacing;
   return fine.seen;
 }
 
-// Prior for group `g`: a member's reference end as seen around when the group was made, put
+// Prior for `group`: a member's reference end as seen around when the group was made, put
 // back through its place in the relative map. First choice: the latest sighting of each such end
 // before the group was made, from a pose the walls fixed, or where the fixed poses have seen that
 // end more finely sampled since, that sighting. A pose the motion model carried
@@ -272,16 +271,16 @@ const SeenWall& FinestEndSighting(MapperState& state, size_t g, int64_t id, int 
 // just before did not see that end still; then the latest member whose reference end was in
 // view so, at about where the sightings of it from fixed poses put it; then the basis's end as
 // the fixed poses have seen it since.
-Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options) {
-  const RelativeMap& map = state.groups[g].relative;
+Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOptions& options) {
+  const RelativeMap& map = group.relative;
   int64_t latest = -1;
   Pose2 prior;
   Vector2d sum = Vector2d::Zero();
   int ends = 0;
   for (const auto& [id, rel] : map.members) {
     if (rel.known != Known::kPoint) continue;
-    const SeenWall& made = SeenFromFixedPose(state, g, id);
-    if (!made.valid || !MemberShowsEnd(state, g, id, made, rel.ref)) {
+    const SeenWall& made = SeenFromFixedPose(in, group, id);
+    if (!made.valid || !MemberShowsEnd(in, group, id, made, rel.ref)) {
       continue;
     }
     // Seen more finely since, from a fixed pose, where it stood still: that sighting. The last
@@ -298,8 +297,8 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
     // from poses 3-5 cm off along the hallway; the group followed them, the poses the group, and
     // both ended 7 cm along (hallway_loop_doors, σ = 1 cm, seed 90).
     double fine_spacing = 0.0;
-    const SeenWall& fine = FinestEndSighting(state, g, id, rel.ref, &fine_spacing);
-    const double made_spacing = SpacingAt(state, made, rel.ref);
+    const SeenWall& fine = FinestEndSighting(in, group, id, rel.ref, &fine_spacing);
+    const double made_spacing = SpacingAt(in, made, rel.ref);
     const bool finer =
         fine.valid && made_spacing > kCoarseSpacing && fine_spacing <= 0.5 * made_spacing;
     const SeenWall& seen = finer ? fine : made;
@@ -319,11 +318,11 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   // A basis known by its line only: its line as last seen from a fixed pose before the group
   // was made, for the same reason (turning in place at a corner, the pose the motion model
   // carried across the wall's line was 2 cm off, and so was the wall).
-  const SeenWall& basis_fixed = SeenFromFixedPose(state, g, basis);
+  const SeenWall& basis_fixed = SeenFromFixedPose(in, group, basis);
   if (basis_rel.known == Known::kLine && basis_fixed.valid) {
     return PlacementFromSighting(basis_fixed, basis_rel);
   }
-  const SeenWall basis_seen = SeenWhenMade(state, g, basis, options);
+  const SeenWall basis_seen = SeenWhenMade(in, group, basis, options);
   prior = PlacementFromSighting(basis_seen, basis_rel);
   // Nor where the latest sighting from a fixed pose before did not show that end still (cut, or
   // moved since the one before; §II.C: a wall end stands still): an end seen far off at a
@@ -337,7 +336,7 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   // basis changed from one build to the next. A door jamb at a corner went 4.6 cm along the
   // hallway, and with it the hallway's next leg across (noisy doors' worst wall 0.056 m).
   const auto from_fixed = [&](const SeenWall& seen) {
-    return state.trajectory.fixed.count(seen.iteration) != 0;
+    return in.trajectory.fixed.count(seen.iteration) != 0;
   };
   if (basis_rel.ref < 0 ||
       (!basis_seen.cut[basis_rel.ref] && !end_moved && from_fixed(basis_seen))) {
@@ -346,21 +345,21 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   // The latest such sighting: the pose it was made from is the nearest to the group's.
   for (const auto& [id, rel] : map.members) {
     if (id == basis || rel.known != Known::kPoint) continue;
-    const SeenWall seen = SeenWhenMade(state, g, id, options);
+    const SeenWall seen = SeenWhenMade(in, group, id, options);
     if (seen.iteration <= latest || !from_fixed(seen)) continue;
-    if (!MemberShowsEnd(state, g, id, seen, rel.ref)) continue;
+    if (!MemberShowsEnd(in, group, id, seen, rel.ref)) continue;
     // Nor a member whose end the fixed poses just before did not see still, as for the basis
     // (§II.C: a wall end stands still): a far wall's end at a grazing angle is its last sample,
     // which creeps along with the sensor (a hallway wall's end beside a door, seen 3.8 m away,
     // lay 0.12 m short of its corner and put a door jamb's group, and the hallway after it, 0.13 m
     // along the hallway).
-    const SeenWall& fixed = SeenFromFixedPose(state, g, id);
+    const SeenWall& fixed = SeenFromFixedPose(in, group, id);
     if (fixed.valid && fixed.cut[rel.ref]) continue;
     // Nor one far from where the fixed poses have seen that end since (their median): with none
     // seen before, one sighting is all MemberShowsEnd has, and a partition's edge seen once
     // 0.45 m into the door beside it (its pieces joined over the lintel) put an office's door
     // frame, and every room after it, 0.44 m along the partition.
-    const SeenWall since = EndSeenFromFixedPoses(state, *state.Plane(id), rel.ref);
+    const SeenWall since = EndSeenFromFixedPoses(in.trajectory, *in.store.Plane(id), rel.ref);
     if (since.valid &&
         std::abs(DirectionOf(seen.alpha).dot(since.edge[rel.ref] - seen.edge[rel.ref])) >
             kFirstEndAgreement) {
@@ -374,20 +373,21 @@ Pose2 PriorPlacement(MapperState& state, size_t g, const MapperOptions& options)
   // says nothing along its wall (a side wall first seen where the 6 m range cut it, 1.6 m short of
   // its corner, put a group and every pose after it 1.56 m off). Its end as the fixed poses
   // have seen it since, when they have.
-  const SeenWall since = EndSeenFromFixedPoses(state, *state.Plane(basis), basis_rel.ref);
+  const SeenWall since =
+      EndSeenFromFixedPoses(in.trajectory, *in.store.Plane(basis), basis_rel.ref);
   return since.valid ? PlacementFromSighting(since, basis_rel) : prior;
 }
 
 }  // namespace
 
-bool CoarselySampled(const MapperState& state, const SeenWall& seen, int ref) {
-  return SpacingAt(state, seen, ref) > kCoarseSpacing;
+bool CoarselySampled(const GlobalMapInputs& in, const SeenWall& seen, int ref) {
+  return SpacingAt(in, seen, ref) > kCoarseSpacing;
 }
 
-Prior PriorWithMemberLines(MapperState& state, size_t g, const MapperOptions& options) {
+Prior PriorWithMemberLines(const GlobalMapInputs& in, Group& group, const MapperOptions& options) {
   Prior prior;
-  prior.pose = PriorPlacement(state, g, options);
-  const RelativeMap& map = state.groups[g].relative;
+  prior.pose = PriorPlacement(in, group, options);
+  const RelativeMap& map = group.relative;
   Eigen::Matrix2d spanned = Eigen::Matrix2d::Zero();
   std::vector<int64_t> late;
   for (const auto& [id, member] : map.members) {
@@ -395,13 +395,14 @@ Prior PriorWithMemberLines(MapperState& state, size_t g, const MapperOptions& op
     // As PriorPlacement takes a line: from a fixed pose before the group was made where there is
     // one (§II.E: the motion model's poses lag along open directions); the basis, which the
     // placement hangs on, as seen when the group was made otherwise.
-    const SeenWall& fixed = SeenFromFixedPose(state, g, id);
+    const SeenWall& fixed = SeenFromFixedPose(in, group, id);
     if (!fixed.valid && id != map.basis) {
       late.push_back(id);
       continue;
     }
-    const SeenWall seen = fixed.valid ? fixed : SeenWhenMade(state, g, id, options);
-    prior.lines.push_back({0.5 * (seen.edge[0] + seen.edge[1]), member, state.Plane(id)->Length()});
+    const SeenWall seen = fixed.valid ? fixed : SeenWhenMade(in, group, id, options);
+    prior.lines.push_back(
+        {0.5 * (seen.edge[0] + seen.edge[1]), member, in.store.Plane(id)->Length()});
     const Vector2d n = NormalOf(member.alpha);
     spanned += n * n.transpose();
   }
@@ -420,9 +421,10 @@ Prior PriorWithMemberLines(MapperState& state, size_t g, const MapperOptions& op
     const Placement& member = map.members.at(id);
     if (std::abs(NormalOf(member.alpha).dot(open)) < kAlongOpen) continue;
     // Not from poses the motion model carried: they stood still along that open direction.
-    const SeenWall seen = LineWhenMade(state, g, id, options);
-    if (state.trajectory.fixed.count(seen.iteration) == 0) continue;
-    prior.lines.push_back({0.5 * (seen.edge[0] + seen.edge[1]), member, state.Plane(id)->Length()});
+    const SeenWall seen = LineWhenMade(in, group, id, options);
+    if (in.trajectory.fixed.count(seen.iteration) == 0) continue;
+    prior.lines.push_back(
+        {0.5 * (seen.edge[0] + seen.edge[1]), member, in.store.Plane(id)->Length()});
   }
   return prior;
 }

@@ -7,10 +7,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "relplane/common/geometry.hpp"
+#include "global_map/inputs.hpp"
+#include "global_map/placement.hpp"
+#include "grouping/group.hpp"
 #include "plane_store/observation.hpp"
+#include "relplane/common/geometry.hpp"
 #include "relplane/mapper/options.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
@@ -34,9 +36,9 @@ struct Prior {
 };
 
 // The pose estimated at `iteration`, or the start pose when there is none.
-geometry::Pose2 PoseAt(const MapperState& state, int64_t iteration, const MapperOptions& options);
+geometry::Pose2 PoseAt(const GlobalMapInputs& in, int64_t iteration, const MapperOptions& options);
 
-// Member `id` of group `g`, known by its orientation only, as its sightings from poses the walls
+// Member `id` of `group`, known by its orientation only, as its sightings from poses the walls
 // fixed agree on its line, kept in the group. One sighting does not place it (§II.A end): a wall
 // seen edge-on through a door, over 0.1 to 0.5 m, is fitted up to 6 degrees off, and its first
 // sighting, 1.6 degrees off, left it 1.4 degrees off on the map for good. Its orientation is the
@@ -45,11 +47,12 @@ geometry::Pose2 PoseAt(const MapperState& state, int64_t iteration, const Mapper
 // offset. Also the sightings since the group was made: a member that joined later has none
 // before (placing a wall's line from a pose is §II.A's "transformed using current position").
 // Falls back to the sighting when the group was made when fewer than two agree.
-SeenWall LineWhenMade(MapperState& state, size_t g, int64_t id, const MapperOptions& options);
+SeenWall LineWhenMade(const GlobalMapInputs& in, Group& group, int64_t id,
+                      const MapperOptions& options);
 
 // Were the samples at end `ref` of `seen` further apart than the end's own noise (2 sigma,
 // LearnedFrustum::kEdgeNoise)? The last sample on the wall is then centimetres short of the end.
-bool CoarselySampled(const MapperState& state, const SeenWall& seen, int ref);
+bool CoarselySampled(const GlobalMapInputs& in, const SeenWall& seen, int ref);
 
 // PriorPlacement, with its members' lines as seen to decide the directions they span. A wall's
 // line is fitted to all its points, while an end is where the sensor's last ray met the wall,
@@ -61,6 +64,6 @@ bool CoarselySampled(const MapperState& state, const SeenWall& seen, int ref);
 // direction to an end: an office's last room, linked to the rooms before by orientation only,
 // moved 8 cm across its outer wall when its basis changed from that wall to the partition
 // beside it, whose end, seen far off, was sampled short.
-Prior PriorWithMemberLines(MapperState& state, size_t g, const MapperOptions& options);
+Prior PriorWithMemberLines(const GlobalMapInputs& in, Group& group, const MapperOptions& options);
 
 }  // namespace relplane::mapper

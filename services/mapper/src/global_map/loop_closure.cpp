@@ -7,9 +7,9 @@
 namespace relplane::mapper {
 
 ClosingLoop NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose2& pose,
-                        int64_t oldest, const MapperState& state, const MotionModel& motion,
-                        int64_t previous_iteration, const geometry::Pose2& previous_pose,
-                        int recent_groups) {
+                        int64_t oldest, const WorldMap& world, const Trajectory& trajectory,
+                        const MotionModel& motion, int64_t previous_iteration,
+                        const geometry::Pose2& previous_pose, int recent_groups) {
   ClosingLoop loop;
   if (oldest < 0 || chain.empty()) return loop;
   // The pose is the chain's only where every wall it came from was placed by a group well after
@@ -17,8 +17,8 @@ ClosingLoop NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose
   int64_t newest = -1;
   Eigen::Matrix2d information = Eigen::Matrix2d::Zero();
   for (const Sighting& s : chain) {
-    auto by = state.placed_by.find(s.plane->Id());
-    if (by == state.placed_by.end() || by->second - oldest <= recent_groups) return loop;
+    auto by = world.placed_by.find(s.plane->Id());
+    if (by == world.placed_by.end() || by->second - oldest <= recent_groups) return loop;
     newest = std::max(newest, by->second);
     if (s.world.known == Known::kAngle) continue;
     const Eigen::Vector2d n = NormalOf(s.world.alpha);
@@ -28,7 +28,7 @@ ClosingLoop NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose
   // (§II.E): as good as the sensor's position while it turns on the spot (held still), but only
   // a learnt velocity's guess while it moves. The tie then holds the two groups across that
   // direction only, or not at all.
-  const auto& poses = state.trajectory.poses;
+  const auto& poses = trajectory.poses;
   auto before = poses.lower_bound(previous_iteration - 1);
   const bool turning =
       before != poses.end() && before->first < previous_iteration &&
@@ -48,10 +48,10 @@ ClosingLoop NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose
 }
 
 bool AddPoseTie(const ClosingLoop& loop, const PoseEstimate& estimate,
-                const PoseGraphOptions& options, MapperState& state) {
+                const PoseGraphOptions& options, const Grouping& grouping, WorldMap& world) {
   if (!loop.closing || estimate.status != PoseStatus::kTracking) return false;
-  const Group& from = state.groups.at(static_cast<size_t>(loop.from));
-  const Group& to = state.groups.at(static_cast<size_t>(loop.to));
+  const Group& from = grouping.groups.at(static_cast<size_t>(loop.from));
+  const Group& to = grouping.groups.at(static_cast<size_t>(loop.to));
   // A loop that closes where the chain already has the sensor has nothing to spread: no tie, and
   // the graph is not solved for it.
   Eigen::Vector2d jump(estimate.pose.x - loop.pose.x, estimate.pose.y - loop.pose.y);
@@ -73,11 +73,11 @@ bool AddPoseTie(const ClosingLoop& loop, const PoseEstimate& estimate,
   tie.b = to.placement.Inverse() * estimate.pose;
   // A few per loop driven (only the first sighting of an old wall again closes it): bounded all
   // the same, for runs of hours.
-  if (state.pose_ties.size() >= static_cast<size_t>(options.max_pose_ties)) {
-    state.pose_ties.erase(state.pose_ties.begin());
+  if (world.pose_ties.size() >= static_cast<size_t>(options.max_pose_ties)) {
+    world.pose_ties.erase(world.pose_ties.begin());
   }
-  state.pose_ties.push_back(tie);
-  ++state.pose_ties_made;
+  world.pose_ties.push_back(tie);
+  ++world.pose_ties_made;
   return true;
 }
 

@@ -1,17 +1,19 @@
 #pragma once
 // A loop closing through backtracking (§II.A end): at one iteration the walls in view, placed by
 // the drifting chain, put the sensor at one pose and the re-seen old walls at another. Noted at
-// registration, made a PoseTie (state.hpp) for the pose graph once the iteration's pose is known,
-// so the error the loop reveals is spread over the groups between them.
+// registration, made a PoseTie (world_map.hpp) for the pose graph once the iteration's pose is
+// known, so the error the loop reveals is spread over the groups between them.
 
 #include <cstdint>
 #include <vector>
 
+#include "global_map/world_map.hpp"
+#include "grouping/group.hpp"
 #include "localisation/pose_solver.hpp"
 #include "motion/motion_model.hpp"
+#include "motion/trajectory.hpp"
 #include "relplane/mapper/options.hpp"
 #include "relplane/mapper/types.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
@@ -30,14 +32,14 @@ struct ClosingLoop {
 // direction (or the sensor turns on the spot). `previous_pose` is the pose of
 // `previous_iteration`, the iteration before this one.
 ClosingLoop NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose2& pose,
-                        int64_t oldest, const MapperState& state, const MotionModel& motion,
-                        int64_t previous_iteration, const geometry::Pose2& previous_pose,
-                        int recent_groups);
+                        int64_t oldest, const WorldMap& world, const Trajectory& trajectory,
+                        const MotionModel& motion, int64_t previous_iteration,
+                        const geometry::Pose2& previous_pose, int recent_groups);
 
 // The PoseTie of `loop` (if it closes), from the pose `estimate` found this iteration, added to
-// state.pose_ties when the loop moved the pose by something (`options`). Returns whether a tie
+// world.pose_ties when the loop moved the pose by something (`options`). Returns whether a tie
 // was added.
 bool AddPoseTie(const ClosingLoop& loop, const PoseEstimate& estimate,
-                const PoseGraphOptions& options, MapperState& state);
+                const PoseGraphOptions& options, const Grouping& grouping, WorldMap& world);
 
 }  // namespace relplane::mapper

@@ -9,14 +9,13 @@
 #include <vector>
 
 #include "comparison/comparison.hpp"
-#include "localisation/pose_solver.hpp"
 #include "global_map/relative_map.hpp"
+#include "localisation/pose_solver.hpp"
 
 namespace relplane::mapper {
 namespace {
 
 using Eigen::Vector2d;
-
 
 // One plane's placement in two groups' relative maps.
 struct Tie {
@@ -50,20 +49,21 @@ struct Tie {
 // door, and a wall the chain had 3 cm off went to 5 cm (office_other_sensor, σ = 1 cm, seed 115).
 // Where the basis is a jamb, its own bias keeps the tie loose: held as exact, the first group's
 // jamb frame turned the next group by 0.1 degrees (seed 36: a wall 4.8 -> 6.7 cm off).
-double OrientationSpread(const MapperState& state, int64_t g, int64_t id) {
-  const Group& group = state.groups[static_cast<size_t>(g)];
+double OrientationSpread(const GlobalMapInputs& in, const Grouping& grouping, int64_t g,
+                         int64_t id) {
+  const Group& group = grouping.groups[static_cast<size_t>(g)];
   double information = 0.0;
   double common = 0.0;  // iterations of the basis's longest comparison
   for (int64_t other : group.members) {
     if (other == id) continue;
-    if (const Comparison* c = state.FindComparison(id, other)) {
+    if (const Comparison* c = in.comparisons.Find(id, other)) {
       information += c->PieceInformation();
       common = std::max(common, c->Common());
     }
   }
   double spread = information > 0.0 ? 1.0 / information : 0.0;
-  const auto plane = state.planes.find(id);
-  if (id == group.relative.basis && common > 0.0 && plane != state.planes.end()) {
+  const auto plane = in.store.planes.find(id);
+  if (id == group.relative.basis && common > 0.0 && plane != in.store.planes.end()) {
     const double blur = PieceBlurOfLength(plane->second.Length());
     spread = std::min(spread, blur * blur / common);
   }
@@ -114,19 +114,19 @@ void LeverVariance(const std::vector<geometry::Pose2>& x, std::vector<Tie>* ties
 }
 
 // Ties between consecutive groups (by index) holding the same rltplane with a known placement.
-std::vector<Tie> CollectTies(const MapperState& state) {
+std::vector<Tie> CollectTies(const GlobalMapInputs& in, const Grouping& grouping) {
   std::vector<Tie> ties;
-  for (const auto& [id, plane] : state.planes) {
+  for (const auto& [id, plane] : in.store.planes) {
     int previous = -1;
     for (int64_t g : plane.groups) {
-      if (g < 0 || g >= static_cast<int64_t>(state.groups.size())) continue;
-      const auto& members = state.groups[g].relative.members;
+      if (g < 0 || g >= static_cast<int64_t>(grouping.groups.size())) continue;
+      const auto& members = grouping.groups[g].relative.members;
       if (!members.count(id)) continue;
       if (previous >= 0 && previous != g) {
-        Tie tie{previous, static_cast<int>(g), &state.groups[previous].relative.members.at(id),
+        Tie tie{previous, static_cast<int>(g), &grouping.groups[previous].relative.members.at(id),
                 &members.at(id), &plane};
         tie.alpha_variance =
-            OrientationSpread(state, previous, id) + OrientationSpread(state, g, id);
+            OrientationSpread(in, grouping, previous, id) + OrientationSpread(in, grouping, g, id);
         ties.push_back(tie);
       }
       previous = static_cast<int>(g);
@@ -150,9 +150,9 @@ struct ChainPrior {
   bool yaw = false;            // no tie turns the two groups
 };
 
-std::vector<ChainPrior> ChainPriors(const MapperState& state, const std::vector<Tie>& ties,
+std::vector<ChainPrior> ChainPriors(const Grouping& grouping, const std::vector<Tie>& ties,
                                     const std::vector<geometry::Pose2>& x) {
-  const int n = static_cast<int>(state.groups.size());
+  const int n = static_cast<int>(grouping.groups.size());
   std::vector<ChainPrior> chain(n);
   std::vector<Eigen::Matrix2d> information(n, Eigen::Matrix2d::Zero());
   std::vector<bool> turned(n, false);
@@ -164,7 +164,7 @@ std::vector<ChainPrior> ChainPriors(const MapperState& state, const std::vector<
     information[t.j] += normal * normal.transpose();
   }
   for (int k = 1; k < n; ++k) {
-    if (state.groups[k].loop_evidence > 0) continue;
+    if (grouping.groups[k].loop_evidence > 0) continue;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(information[k]);
     for (int e = 0; e < 2; ++e) {
       if (eig.eigenvalues()(e) < kOpenInformation) {
@@ -177,14 +177,14 @@ std::vector<ChainPrior> ChainPriors(const MapperState& state, const std::vector<
 }
 
 // The pose ties whose groups still have the frames they were made in (PoseTie).
-std::vector<const PoseTie*> CurrentPoseTies(const MapperState& state) {
+std::vector<const PoseTie*> CurrentPoseTies(const Grouping& grouping, const WorldMap& world) {
   std::vector<const PoseTie*> current;
-  const auto n = static_cast<int64_t>(state.groups.size());
-  auto same_frame = [&state](int64_t g, int64_t basis, int ref) {
-    const RelativeMap& map = state.groups[static_cast<size_t>(g)].relative;
+  const auto n = static_cast<int64_t>(grouping.groups.size());
+  auto same_frame = [&grouping](int64_t g, int64_t basis, int ref) {
+    const RelativeMap& map = grouping.groups[static_cast<size_t>(g)].relative;
     return map.basis == basis && map.BasisRef() == ref;
   };
-  for (const PoseTie& t : state.pose_ties) {
+  for (const PoseTie& t : world.pose_ties) {
     if (t.a_group < 0 || t.a_group >= n || t.b_group < 0 || t.b_group >= n) continue;
     if (!same_frame(t.a_group, t.a_basis, t.a_ref) || !same_frame(t.b_group, t.b_basis, t.b_ref)) {
       continue;
@@ -336,19 +336,19 @@ Normal Linearise(const std::vector<Tie>& ties, const std::vector<const PoseTie*>
 
 }  // namespace
 
-int GroupLoopEvidence(const MapperState& state, size_t g, int min_span) {
+int GroupLoopEvidence(const PlaneStore& store, const Grouping& grouping, size_t g, int min_span) {
   int evidence = 0;
-  const auto& members = state.groups[g].relative.members;
+  const auto& members = grouping.groups[g].relative.members;
   for (const auto& [id, placed] : members) {
-    auto plane = state.planes.find(id);
-    if (plane == state.planes.end()) continue;
+    auto plane = store.planes.find(id);
+    if (plane == store.planes.end()) continue;
     // The latest earlier group that places the plane too.
     const Placement* earlier = nullptr;
     int64_t earlier_group = -1;
     for (int64_t h : plane->second.groups) {
       if (h < 0 || h >= static_cast<int64_t>(g)) continue;
-      auto it = state.groups[h].relative.members.find(id);
-      if (it != state.groups[h].relative.members.end() && h > earlier_group) {
+      auto it = grouping.groups[h].relative.members.find(id);
+      if (it != grouping.groups[h].relative.members.end() && h > earlier_group) {
         earlier = &it->second;
         earlier_group = h;
       }
@@ -360,12 +360,13 @@ int GroupLoopEvidence(const MapperState& state, size_t g, int min_span) {
   return evidence;
 }
 
-PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptions& options) {
+PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMap& world,
+                                        const PoseGraphOptions& options, Grouping& grouping) {
   PoseGraphResult result;
-  const int n = static_cast<int>(state.groups.size());
+  const int n = static_cast<int>(grouping.groups.size());
   if (n < 2) return result;
-  std::vector<Tie> ties = CollectTies(state);
-  const std::vector<const PoseTie*> pose_ties = CurrentPoseTies(state);
+  std::vector<Tie> ties = CollectTies(in, grouping);
+  const std::vector<const PoseTie*> pose_ties = CurrentPoseTies(grouping, world);
   result.ties = static_cast<int>(ties.size() + pose_ties.size());
   // The priors are centred on each group's chained placement (§II.D), which a solve leaves as
   // it was, not on where the last solve left the group: that placement already holds the ties,
@@ -375,7 +376,7 @@ PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptio
   // each; 3 walls doubled and a wall 0.27 m off). The solve still starts from the placements.
   std::vector<geometry::Pose2> x(n), x0(n);
   for (int k = 0; k < n; ++k) {
-    Group& group = state.groups[k];
+    Group& group = grouping.groups[k];
     if (!group.has_chained) {
       group.chained = group.placement;
       group.has_chained = true;
@@ -386,7 +387,7 @@ PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptio
   LeverVariance(x, &ties);
   Eigen::SparseMatrix<double> h(3 * n, 3 * n);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-  const std::vector<ChainPrior> chain = ChainPriors(state, ties, x);
+  const std::vector<ChainPrior> chain = ChainPriors(grouping, ties, x);
   Normal eq = Linearise(ties, pose_ties, chain, x, x0, options);
   result.cost_before = eq.cost;
   // Levenberg-Marquardt: a step that does not lower the cost is refused and the next one damped
@@ -421,7 +422,7 @@ PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptio
   result.cost_after = eq.cost;
   // Keep the result only if it explains the ties better (a failed solve leaves the map alone).
   if (result.cost_after < result.cost_before) {
-    for (int k = 0; k < n; ++k) state.groups[k].placement = x[k];
+    for (int k = 0; k < n; ++k) grouping.groups[k].placement = x[k];
   }
   return result;
 }

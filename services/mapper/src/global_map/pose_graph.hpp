@@ -10,15 +10,18 @@
 
 #include <cstdint>
 
+#include "global_map/inputs.hpp"
+#include "global_map/world_map.hpp"
+#include "grouping/group.hpp"
+#include "plane_store/plane_store.hpp"
 #include "relplane/mapper/options.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
 // Ties of group `g` to earlier groups through shared rltplanes that skip at least `min_span`
 // groups: loop closures. Counted with the weight of what the two placements know, so the sum
 // over the groups grows both when a loop closes and when a closing tie learns more.
-int GroupLoopEvidence(const MapperState& state, size_t g, int min_span);
+int GroupLoopEvidence(const PlaneStore& store, const Grouping& grouping, size_t g, int min_span);
 
 struct PoseGraphResult {
   int iterations = 0;
@@ -29,6 +32,7 @@ struct PoseGraphResult {
 
 // Gauss-Newton over all group placements (world <- group frame), starting from the current
 // ones; group 0 stays where it is (anchored at the start pose, §II.D).
-PoseGraphResult OptimiseGroupPlacements(MapperState& state, const PoseGraphOptions& options);
+PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMap& world,
+                                        const PoseGraphOptions& options, Grouping& grouping);
 
 }  // namespace relplane::mapper

@@ -49,15 +49,15 @@ bool PairThrough(const Comparison& c, const RltPlane& a, int i, double max_std, 
 }
 
 // The point placement of `to` from placed member `from` through their static pairing.
-bool PlacePoint(const Placement& from_placed, int64_t from, int64_t to, MapperState& state,
+bool PlacePoint(const Placement& from_placed, int64_t from, int64_t to, const RelativeMapInputs& in,
                 double max_std, Placement* out, double* weight) {
   if (from_placed.known != Known::kPoint) return false;
-  const Comparison* c = state.FindComparison(from, to);
+  const Comparison* c = in.comparisons.Find(from, to);
   if (c == nullptr) return false;
   int j = -1;
   Vector2d delta;
   double variance = 0.0;
-  if (!PairThrough(*c, *state.Plane(from), from_placed.ref, max_std, &j, &delta, weight,
+  if (!PairThrough(*c, *in.store.Plane(from), from_placed.ref, max_std, &j, &delta, weight,
                    &variance)) {
     return false;
   }
@@ -71,9 +71,9 @@ bool PlacePoint(const Placement& from_placed, int64_t from, int64_t to, MapperSt
 
 // The line placement of `to`: its line steady relative to a placed edge (or parallel to a
 // placed line).
-bool PlaceLine(const Placement& p, int64_t from, int64_t to, const MapperState& state,
+bool PlaceLine(const Placement& p, int64_t from, int64_t to, const RelativeMapInputs& in,
                Placement* out) {
-  const Comparison* c = state.FindComparison(from, to);
+  const Comparison* c = in.comparisons.Find(from, to);
   if (c == nullptr) return false;
   const DirectedStats& s = c->From(from);
   const double dalpha = c->DeltaAlpha(from);
@@ -99,15 +99,15 @@ bool PlaceLine(const Placement& p, int64_t from, int64_t to, const MapperState& 
 }
 
 // Are `from` and `to` parallel by their comparison (the line placement then needs no edge)?
-bool ParallelTo(int64_t from, int64_t to, const MapperState& state) {
-  const Comparison* c = state.FindComparison(from, to);
+bool ParallelTo(int64_t from, int64_t to, const RelativeMapInputs& in) {
+  const Comparison* c = in.comparisons.Find(from, to);
   return c != nullptr && std::abs(std::sin(c->DeltaAlpha(from))) < kParallelSin;
 }
 
 // The orientation of `to` only, through any comparison with a common interval.
-bool PlaceAngle(const Placement& p, int64_t from, int64_t to, const MapperState& state,
+bool PlaceAngle(const Placement& p, int64_t from, int64_t to, const RelativeMapInputs& in,
                 Placement* out) {
-  const Comparison* c = state.FindComparison(from, to);
+  const Comparison* c = in.comparisons.Find(from, to);
   if (c == nullptr || c->Common() <= 0.0) return false;
   *out = Placement{};
   out->alpha = p.alpha + c->DeltaAlpha(from);
@@ -125,7 +125,7 @@ bool PlaceAngle(const Placement& p, int64_t from, int64_t to, const MapperState&
 // within ten frames while the wall parallel to it across the door was in the same group, and
 // the pose and every wall after it followed (noise-free office: ATE 7 mm, under 0.5 mm from the
 // parallel wall). So: every line a parallel member gives, then one crossing line, and again.
-void PlaceRest(const Group& group, const MapperState& state, RelativeMap* map,
+void PlaceRest(const Group& group, const RelativeMapInputs& in, RelativeMap* map,
                ChainOrder* order) {
   auto place_lines = [&](bool parallel_only) {
     bool placed = false;
@@ -133,8 +133,8 @@ void PlaceRest(const Group& group, const MapperState& state, RelativeMap* map,
       if (map->members.count(to)) continue;
       for (const auto& [from, p] : map->members) {
         Placement q;
-        if (parallel_only && !ParallelTo(from, to, state)) continue;
-        if (!PlaceLine(p, from, to, state, &q)) continue;
+        if (parallel_only && !ParallelTo(from, to, in)) continue;
+        if (!PlaceLine(p, from, to, in, &q)) continue;
         map->members[to] = q;
         if (order != nullptr) order->links.push_back({from, to});
         placed = true;
@@ -150,7 +150,7 @@ void PlaceRest(const Group& group, const MapperState& state, RelativeMap* map,
     if (map->members.count(to)) continue;
     for (const auto& [from, p] : map->members) {
       Placement q;
-      if (!PlaceAngle(p, from, to, state, &q)) continue;
+      if (!PlaceAngle(p, from, to, in, &q)) continue;
       map->members[to] = q;
       if (order != nullptr) order->links.push_back({from, to});
       break;
@@ -169,11 +169,11 @@ RelativeMap StartAt(int64_t basis, int basis_ref) {
 }
 
 // Static-pairing evidence of member `m`'s two edges against the rest of the group.
-double EdgeEvidence(const Group& group, const MapperState& state, int64_t m, int* ref) {
+double EdgeEvidence(const Group& group, const RelativeMapInputs& in, int64_t m, int* ref) {
   double count[2] = {0.0, 0.0};
   for (int64_t o : group.members) {
     if (o == m) continue;
-    const Comparison* c = state.FindComparison(m, o);
+    const Comparison* c = in.comparisons.Find(m, o);
     if (c == nullptr) continue;
     count[0] += c->From(m).PairCount(0);
     count[1] += c->From(m).PairCount(1);
@@ -186,7 +186,7 @@ double EdgeEvidence(const Group& group, const MapperState& state, int64_t m, int
 // Prim's algorithm over static pairings: repeatedly attach the unplaced member with the
 // strongest static pairing to a member placed with a point. Records the links used in `order`
 // when given.
-void GrowByPoints(const Group& group, MapperState& state, double max_std, RelativeMap* map,
+void GrowByPoints(const Group& group, const RelativeMapInputs& in, double max_std, RelativeMap* map,
                   ChainOrder* order) {
   struct Candidate {
     double weight = 0.0;
@@ -200,7 +200,7 @@ void GrowByPoints(const Group& group, MapperState& state, double max_std, Relati
       if (map->members.count(to)) continue;
       Candidate cand;
       cand.from = from;
-      if (PlacePoint(p, from, to, state, max_std, &cand.placed, &cand.weight) &&
+      if (PlacePoint(p, from, to, in, max_std, &cand.placed, &cand.weight) &&
           cand.weight > candidates[to].weight) {
         candidates[to] = cand;
       }
@@ -222,12 +222,12 @@ void GrowByPoints(const Group& group, MapperState& state, double max_std, Relati
 }
 
 // Does the chain reach a member whose static end an earlier group put on the global map?
-bool LinksToMap(const RelativeMap& chain, const MapperState& state, int64_t group_id) {
+bool LinksToMap(const RelativeMap& chain, const RelativeMapInputs& in, int64_t group_id) {
   for (const auto& [id, p] : chain.members) {
-    const auto placed = state.global.find(id);
-    const auto by = state.placed_by.find(id);
-    if (placed != state.global.end() && placed->second.known == Known::kPoint &&
-        by != state.placed_by.end() && by->second < group_id) {
+    const auto placed = in.world.global.find(id);
+    const auto by = in.world.placed_by.find(id);
+    if (placed != in.world.global.end() && placed->second.known == Known::kPoint &&
+        by != in.world.placed_by.end() && by->second < group_id) {
       return true;
     }
   }
@@ -236,7 +236,7 @@ bool LinksToMap(const RelativeMap& chain, const MapperState& state, int64_t grou
 
 // The basis and its reference edge among `candidates` (all members when empty): the most
 // static-pairing evidence; the map grown from it by points, its links recorded in `order`.
-RelativeMap GrowFromBest(const Group& group, MapperState& state,
+RelativeMap GrowFromBest(const Group& group, const RelativeMapInputs& in,
                          const std::set<int64_t>& candidates, double max_std, ChainOrder* order) {
   double best = -1.0;
   order->basis = -1;
@@ -245,7 +245,7 @@ RelativeMap GrowFromBest(const Group& group, MapperState& state,
   for (int64_t m : group.members) {
     if (!candidates.empty() && candidates.count(m) == 0) continue;
     int ref = -1;
-    const double total = EdgeEvidence(group, state, m, &ref);
+    const double total = EdgeEvidence(group, in, m, &ref);
     if (total > best) {
       best = total;
       order->basis = m;
@@ -253,7 +253,7 @@ RelativeMap GrowFromBest(const Group& group, MapperState& state,
     }
   }
   RelativeMap map = StartAt(order->basis, order->basis_ref);
-  GrowByPoints(group, state, max_std, &map, order);
+  GrowByPoints(group, in, max_std, &map, order);
   return map;
 }
 
@@ -264,7 +264,7 @@ RelativeMap GrowFromBest(const Group& group, MapperState& state,
 // points stay where the chain put them: a link's offsets are in the frame of the member it starts
 // from as that member was fitted then (placing them again along the chain with these
 // orientations moved no recording's ATE by more than 2 mm).
-void RefineOrientations(const MapperState& state, RelativeMap* map) {
+void RefineOrientations(const RelativeMapInputs& in, RelativeMap* map) {
   // Least squares on the angles' corrections from the chain's values (within a few degrees of
   // the solution, so linear), the basis held: unknown k is member ids[k], the basis is last.
   std::vector<int64_t> ids;
@@ -282,7 +282,7 @@ void RefineOrientations(const MapperState& state, RelativeMap* map) {
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
   for (int x = 0; x <= n; ++x) {
     for (int y = x + 1; y <= n; ++y) {
-      const Comparison* cmp = state.FindComparison(ids[x], ids[y]);
+      const Comparison* cmp = in.comparisons.Find(ids[x], ids[y]);
       if (cmp == nullptr) continue;
       const double w = cmp->PieceInformation();
       if (w <= 0.0) continue;
@@ -315,7 +315,7 @@ void RefineOrientations(const MapperState& state, RelativeMap* map) {
 // 5 mm)^2), the information of its mean with a 5 mm floor per sample; through a wall's length
 // (seen whole) half, as in the chain. The orientations are held at RefineOrientations' values:
 // the offsets stay linear in the points.
-void RefinePoints(MapperState& state, double max_std, RelativeMap* map) {
+void RefinePoints(const RelativeMapInputs& in, double max_std, RelativeMap* map) {
   const auto basis = map->members.find(map->basis);
   if (basis == map->members.end() || basis->second.known != Known::kPoint) return;
   // Unknown k is member placed[k] (k >= 1); 0 is the basis, held.
@@ -336,7 +336,7 @@ void RefinePoints(MapperState& state, double max_std, RelativeMap* map) {
   };
   std::vector<Frame> frames(n);
   for (int k = 0; k < n; ++k) {
-    const RltPlane& plane = *state.Plane(ids[k]);
+    const RltPlane& plane = *in.store.Plane(ids[k]);
     frames[k].rot = Rot(placed[k]->alpha);
     frames[k].whole = plane.FullLengthKnown();
     if (frames[k].whole) frames[k].step = plane.Length() * frames[k].rot.col(0);
@@ -350,7 +350,7 @@ void RefinePoints(MapperState& state, double max_std, RelativeMap* map) {
   std::vector<Link> links;
   for (int x = 0; x < n; ++x) {
     for (int y = x + 1; y < n; ++y) {
-      const Comparison* cmp = state.FindComparison(ids[x], ids[y]);
+      const Comparison* cmp = in.comparisons.Find(ids[x], ids[y]);
       if (cmp == nullptr) continue;
       // Both directions are the same samples, in either member's frame: half each.
       for (const auto& [u, v] : {std::pair{x, y}, std::pair{y, x}}) {
@@ -418,11 +418,11 @@ void RefinePoints(MapperState& state, double max_std, RelativeMap* map) {
 // chain's points, over seeds 1-72 of the six scenarios at sigma = 1 cm 413 of 432 runs met the
 // targets, ATE sum 6.251 m, against 415 and 5.980 m (solving the points before PlaceRest, with
 // the chain's orientations: 409, 6.396 m).
-void PlaceTheRest(const Group& group, MapperState& state, double max_std, RelativeMap* map,
+void PlaceTheRest(const Group& group, const RelativeMapInputs& in, double max_std, RelativeMap* map,
                   ChainOrder* order) {
-  PlaceRest(group, state, map, order);
-  RefineOrientations(state, map);
-  RefinePoints(state, max_std, map);
+  PlaceRest(group, in, map, order);
+  RefineOrientations(in, map);
+  RefinePoints(in, max_std, map);
   for (auto it = map->members.begin(); it != map->members.end();) {
     const bool point = it->second.known == Known::kPoint || it->first == map->basis;
     it = point ? std::next(it) : map->members.erase(it);
@@ -433,12 +433,13 @@ void PlaceTheRest(const Group& group, MapperState& state, double max_std, Relati
                                [&](const ChainLink& l) { return map->members.count(l.to) == 0; }),
                 links.end());
   }
-  PlaceRest(group, state, map, order);
-  RefineOrientations(state, map);
+  PlaceRest(group, in, map, order);
+  RefineOrientations(in, map);
 }
 
 // The comparison order that uses the most iterations (§II.F reordering) and the map it gives.
-RelativeMap Choose(const Group& group, MapperState& state, double max_std, ChainOrder* order) {
+RelativeMap Choose(const Group& group, const RelativeMapInputs& in, double max_std,
+                   ChainOrder* order) {
   // The static pairings may form sets with no pairing between them: the chain from a basis
   // reaches its own set only, and the others are placed by lines. §II.D places a group through
   // the planes an earlier group placed, so the basis is in a set holding one whose static end
@@ -447,19 +448,19 @@ RelativeMap Choose(const Group& group, MapperState& state, double max_std, Chain
   // group of six walls placed along the hallway from its prior alone (0.2 m off, and the whole
   // loop after it). The other members' chains are grown only when the best one's does not link
   // (growing every member's chain at every build tripled the time per iteration on a large map).
-  RelativeMap map = GrowFromBest(group, state, {}, max_std, order);
-  if (!LinksToMap(map, state, group.id)) {
+  RelativeMap map = GrowFromBest(group, in, {}, max_std, order);
+  if (!LinksToMap(map, in, group.id)) {
     std::set<int64_t> linked;  // members whose chain reaches a static end on the global map
     for (int64_t m : group.members) {
       int ref = -1;
-      if (m == order->basis || EdgeEvidence(group, state, m, &ref) <= 0.0) continue;
+      if (m == order->basis || EdgeEvidence(group, in, m, &ref) <= 0.0) continue;
       RelativeMap chain = StartAt(m, ref);
-      GrowByPoints(group, state, max_std, &chain, nullptr);
-      if (LinksToMap(chain, state, group.id)) linked.insert(m);
+      GrowByPoints(group, in, max_std, &chain, nullptr);
+      if (LinksToMap(chain, in, group.id)) linked.insert(m);
     }
-    if (!linked.empty()) map = GrowFromBest(group, state, linked, max_std, order);
+    if (!linked.empty()) map = GrowFromBest(group, in, linked, max_std, order);
   }
-  PlaceTheRest(group, state, max_std, &map, order);
+  PlaceTheRest(group, in, max_std, &map, order);
   return map;
 }
 
@@ -481,14 +482,14 @@ bool EdgePoint(const RltPlane& plane, const Placement& placement, int edge, Vect
   return true;
 }
 
-ChainOrder ChooseOrder(const Group& group, MapperState& state,
+ChainOrder ChooseOrder(const Group& group, const RelativeMapInputs& in,
                        const ComparisonOptions& comparison) {
   ChainOrder order;
-  if (!group.members.empty()) Choose(group, state, comparison.static_std, &order);
+  if (!group.members.empty()) Choose(group, in, comparison.static_std, &order);
   return order;
 }
 
-RelativeMap BuildRelativeMap(const Group& group, MapperState& state,
+RelativeMap BuildRelativeMap(const Group& group, const RelativeMapInputs& in,
                              const ComparisonOptions& comparison) {
   const auto& members = group.members;
   if (members.empty()) return {};
@@ -497,13 +498,13 @@ RelativeMap BuildRelativeMap(const Group& group, MapperState& state,
   const ChainOrder& order = group.order;
   bool kept = order.basis >= 0;
   for (int64_t m : members) {
-    kept = kept && (m == order.basis ||
-                    std::any_of(order.links.begin(), order.links.end(),
-                                [m](const ChainLink& link) { return link.to == m; }));
+    kept = kept &&
+           (m == order.basis || std::any_of(order.links.begin(), order.links.end(),
+                                            [m](const ChainLink& link) { return link.to == m; }));
   }
   if (!kept) {
     ChainOrder fresh;
-    return Choose(group, state, comparison.static_std, &fresh);
+    return Choose(group, in, comparison.static_std, &fresh);
   }
   // §II.F: the order chosen at the reordering, with the comparisons' latest averages; a link
   // whose static pairing has gone falls back to the line, then the orientation.
@@ -517,13 +518,12 @@ RelativeMap BuildRelativeMap(const Group& group, MapperState& state,
     const Placement p = from->second;
     Placement q;
     double weight = 0.0;
-    if (PlacePoint(p, link.from, link.to, state, comparison.static_std, &q, &weight) ||
-        PlaceLine(p, link.from, link.to, state, &q) ||
-        PlaceAngle(p, link.from, link.to, state, &q)) {
+    if (PlacePoint(p, link.from, link.to, in, comparison.static_std, &q, &weight) ||
+        PlaceLine(p, link.from, link.to, in, &q) || PlaceAngle(p, link.from, link.to, in, &q)) {
       map.members[link.to] = q;
     }
   }
-  PlaceTheRest(group, state, comparison.static_std, &map, nullptr);
+  PlaceTheRest(group, in, comparison.static_std, &map, nullptr);
   return map;
 }
 

@@ -7,22 +7,21 @@
 namespace relplane::mapper {
 namespace {
 
-bool Covisible(MapperState& state, const RltPlane& r, int64_t other, int64_t now,
+bool Covisible(const PlaneStore& store, const RltPlane& r, int64_t other, int64_t now,
                const GroupingOptions& options) {
-  const RltPlane* m = state.Plane(other);
-  return m != nullptr &&
-         CommonRecent(r, *m, now, options.covisible_window) >= options.min_common;
+  const RltPlane* m = store.Plane(other);
+  return m != nullptr && CommonRecent(r, *m, now, options.covisible_window) >= options.min_common;
 }
 
 // §II.B "checks if an ungrouped rltplane is present in the same time interval as every other
 // rltplane in a given grouping".
-bool FitsGroup(MapperState& state, const RltPlane& r, const Group& g, int64_t now,
+bool FitsGroup(const PlaneStore& store, const RltPlane& r, const Group& g, int64_t now,
                const GroupingOptions& options) {
   // A frozen group's relative map is no longer rebuilt (§II.F): it takes no new member.
   if (g.Frozen()) return false;
   if (std::find(g.members.begin(), g.members.end(), r.Id()) != g.members.end()) return false;
   for (int64_t m : g.members) {
-    if (!Covisible(state, r, m, now, options)) return false;
+    if (!Covisible(store, r, m, now, options)) return false;
   }
   return true;
 }
@@ -34,16 +33,16 @@ bool FitsGroup(MapperState& state, const RltPlane& r, const Group& g, int64_t no
 // belongs to (a duplicate 3 degrees off), and localising against it turned the pose 8 degrees.
 // Judged against the plane seen with it most often over its latest sightings; a plane seen alone
 // cannot be judged and counts as steady.
-bool Steady(const MapperState& state, const RltPlane& r, const GroupingOptions& options) {
+bool Steady(const PlaneStore& store, const RltPlane& r, const GroupingOptions& options) {
   const auto& all = r.Observations();
   const size_t n = std::min(all.size(), static_cast<size_t>(std::max(options.min_observations, 1)));
   const size_t from = all.size() - n;
   int best_common = 0;
   double best_spread = 0.0;
-  for (int64_t id : state.recent) {
+  for (int64_t id : store.recent) {
     if (id == r.Id()) continue;
-    const auto it = state.planes.find(id);
-    if (it == state.planes.end()) continue;
+    const auto it = store.planes.find(id);
+    if (it == store.planes.end()) continue;
     double s = 0.0, c = 0.0;
     std::vector<double> deltas;
     for (size_t i = from; i < all.size(); ++i) {
@@ -67,20 +66,21 @@ bool Steady(const MapperState& state, const RltPlane& r, const GroupingOptions& 
   return best_spread <= options.max_orientation_spread;
 }
 
-void Join(MapperState& state, Group& g, int64_t id) {
+void Join(PlaneStore& store, Group& g, int64_t id) {
   g.members.push_back(id);
   g.dirty = true;
-  state.Plane(id)->groups.push_back(g.id);
+  store.Plane(id)->groups.push_back(g.id);
 }
 
 // Places one rltplane that is ready to be grouped.
-void Place(MapperState& state, int64_t id, int64_t now, const GroupingOptions& options) {
-  const RltPlane& r = *state.Plane(id);
-  const int n = static_cast<int>(state.groups.size());
+void Place(Grouping& grouping, PlaneStore& store, int64_t id, int64_t now,
+           const GroupingOptions& options) {
+  const RltPlane& r = *store.Plane(id);
+  const int n = static_cast<int>(grouping.groups.size());
   const int first = std::max(0, n - options.recent_groups);
   for (int g = n - 1; g >= first; --g) {
-    if (FitsGroup(state, r, state.groups[g], now, options)) {
-      Join(state, state.groups[g], id);
+    if (FitsGroup(store, r, grouping.groups[g], now, options)) {
+      Join(store, grouping.groups[g], id);
       return;
     }
   }
@@ -89,15 +89,15 @@ void Place(MapperState& state, int64_t id, int64_t now, const GroupingOptions& o
   Group group;
   group.id = n;
   group.created = now;
-  state.groups.push_back(group);
-  Group& fresh = state.groups.back();
-  Join(state, fresh, id);
+  grouping.groups.push_back(group);
+  Group& fresh = grouping.groups.back();
+  Join(store, fresh, id);
   for (int g = n - 1; g >= first; --g) {
-    for (int64_t m : state.groups[g].members) {
+    for (int64_t m : grouping.groups[g].members) {
       if (std::find(fresh.members.begin(), fresh.members.end(), m) != fresh.members.end()) {
         continue;
       }
-      if (Covisible(state, *state.Plane(id), m, now, options)) Join(state, fresh, m);
+      if (Covisible(store, *store.Plane(id), m, now, options)) Join(store, fresh, m);
     }
   }
 }
@@ -121,12 +121,13 @@ bool ShareAGroup(const RltPlane& a, const RltPlane& b) {
 // Then every pair in view is compared in a group that already exists (§II.C), and its
 // relative map covers the view: a route driven again and again adds no group once each pair
 // seen together has been grouped together.
-bool CoveredByGroups(MapperState& state, const RltPlane& r, const std::vector<int64_t>& visible,
-                     int64_t now, const GroupingOptions& options) {
+bool CoveredByGroups(const PlaneStore& store, const RltPlane& r,
+                     const std::vector<int64_t>& visible, int64_t now,
+                     const GroupingOptions& options) {
   for (int64_t other : visible) {
-    const RltPlane* o = state.Plane(other);
+    const RltPlane* o = store.Plane(other);
     if (o == nullptr || o->groups.empty() || other == r.Id()) continue;
-    if (!ShareAGroup(r, *o) && Covisible(state, r, other, now, options)) return false;
+    if (!ShareAGroup(r, *o) && Covisible(store, r, other, now, options)) return false;
   }
   return true;
 }
@@ -154,37 +155,39 @@ int CommonSince(const RltPlane& a, const RltPlane& b, int64_t from) {
   return common;
 }
 
-void UpdateGroups(MapperState& state, const std::vector<int64_t>& visible, int64_t now,
-                  const GroupingOptions& options) {
+void UpdateGroups(const std::vector<int64_t>& created, const std::vector<int64_t>& visible,
+                  int64_t now, const GroupingOptions& options, Grouping& grouping,
+                  PlaneStore& store) {
+  grouping.ungrouped.insert(grouping.ungrouped.end(), created.begin(), created.end());
   // The ungrouped list: ready rltplanes are placed, stale ones dropped.
   std::vector<int64_t> waiting;
-  for (int64_t id : state.ungrouped) {
-    RltPlane* r = state.Plane(id);
+  for (int64_t id : grouping.ungrouped) {
+    RltPlane* r = store.Plane(id);
     if (r == nullptr) continue;
-    if (r->Count() >= options.min_observations && Steady(state, *r, options)) {
-      Place(state, id, now, options);
+    if (r->Count() >= options.min_observations && Steady(store, *r, options)) {
+      Place(grouping, store, id, now, options);
       continue;
     }
     if (now - r->FirstSeen() > options.ungrouped_timeout) {
-      state.recent.erase(id);
-      state.planes.erase(id);
+      store.recent.erase(id);
+      store.planes.erase(id);
       continue;
     }
     waiting.push_back(id);
   }
-  state.ungrouped = std::move(waiting);
+  grouping.ungrouped = std::move(waiting);
   // Re-seen rltplanes (backtracking, loop closure: §II.A end) rejoin the current groups so the
   // new relative maps link to them, unless they already share a group with every plane in
   // view they are co-visible with: then the old groups cover the view, and a later lap adds no
   // group there (the number of groups stays bounded on a route driven again and again).
-  const int n = static_cast<int>(state.groups.size());
+  const int n = static_cast<int>(grouping.groups.size());
   for (int64_t id : visible) {
-    RltPlane* r = state.Plane(id);
+    RltPlane* r = store.Plane(id);
     if (r == nullptr || r->groups.empty()) continue;
     if (r->groups.back() >= n - options.recent_groups) continue;
     if (CommonRecent(*r, *r, now, options.covisible_window) < options.min_common) continue;
-    if (CoveredByGroups(state, *r, visible, now, options)) continue;
-    Place(state, id, now, options);
+    if (CoveredByGroups(store, *r, visible, now, options)) continue;
+    Place(grouping, store, id, now, options);
   }
 }
 

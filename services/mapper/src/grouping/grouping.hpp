@@ -8,8 +8,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "grouping/group.hpp"
+#include "plane_store/plane_store.hpp"
 #include "relplane/mapper/options.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
@@ -18,9 +19,11 @@ int CommonRecent(const RltPlane& a, const RltPlane& b, int64_t now, int window);
 // Stored observations of both planes at the same iteration, from iteration `from` on.
 int CommonSince(const RltPlane& a, const RltPlane& b, int64_t from);
 
-// One grouping step at iteration `now`. `visible` are the rltplanes observed this iteration.
-// Groups that gain members are marked dirty; timed-out ungrouped rltplanes are erased.
-void UpdateGroups(MapperState& state, const std::vector<int64_t>& visible, int64_t now,
-                  const GroupingOptions& options);
+// One grouping step at iteration `now`: the rltplanes registration `created` join the ungrouped
+// list (§II.B); `visible` are the rltplanes observed this iteration. Groups that gain members are
+// marked dirty; timed-out ungrouped rltplanes are erased from the store.
+void UpdateGroups(const std::vector<int64_t>& created, const std::vector<int64_t>& visible,
+                  int64_t now, const GroupingOptions& options, Grouping& grouping,
+                  PlaneStore& store);
 
 }  // namespace relplane::mapper

@@ -3,18 +3,18 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "grouping/grouping.hpp"
 #include "global_map/relative_map.hpp"
+#include "grouping/grouping.hpp"
 
 namespace relplane::mapper {
 namespace {
 
 // The longest comparison interval `id` has with another member of `group`.
-double MemberInterval(const MapperState& state, const Group& group, int64_t id) {
+double MemberInterval(const ComparisonTable& comparisons, const Group& group, int64_t id) {
   double longest = 0.0;
   for (int64_t other : group.members) {
     if (other == id) continue;
-    const Comparison* c = state.FindComparison(id, other);
+    const Comparison* c = comparisons.Find(id, other);
     if (c != nullptr) longest = std::max(longest, c->Common());
   }
   return longest;
@@ -22,18 +22,18 @@ double MemberInterval(const MapperState& state, const Group& group, int64_t id) 
 
 // Brings the comparisons of `id` with every member of `group` up to `now` from the stored
 // observations: "these untransformed observations are used to recalculate a new grouping".
-void CompareWithMembers(MapperState& state, const Group& group, int64_t id, int64_t now,
-                        const MapperOptions& options) {
+void CompareWithMembers(PlaneStore& store, ComparisonTable& comparisons, const Group& group,
+                        int64_t id, int64_t now, const MapperOptions& options) {
   for (int64_t other : group.members) {
     if (other == id) continue;
     const PairKey key = KeyOf(id, other);
-    auto it = state.comparisons.try_emplace(key, key.first, key.second).first;
-    it->second.Update(*state.Plane(key.first), *state.Plane(key.second), now,
-                      options.comparison, options.registration.last_seen_window);
+    auto it = comparisons.pairs.try_emplace(key, key.first, key.second).first;
+    it->second.Update(*store.Plane(key.first), *store.Plane(key.second), now, options.comparison,
+                      options.registration.last_seen_window);
   }
 }
 
-void Leave(MapperState& state, Group& group, int64_t id) {
+void Leave(PlaneStore& store, Group& group, int64_t id) {
   group.members.erase(std::remove(group.members.begin(), group.members.end(), id),
                       group.members.end());
   group.relative.members.erase(id);
@@ -46,81 +46,79 @@ void Leave(MapperState& state, Group& group, int64_t id) {
   group.finest_end.erase({id, 0});
   group.finest_end.erase({id, 1});
   group.dirty = true;
-  RltPlane* plane = state.Plane(id);
+  RltPlane* plane = store.Plane(id);
   plane->groups.erase(std::remove(plane->groups.begin(), plane->groups.end(), group.id),
                       plane->groups.end());
 }
 
 // "attempted to be placed into another group": the open group it shares the longest stored
 // interval with, if that is long enough.
-bool JoinAnother(MapperState& state, size_t left, int64_t id, int64_t now,
+bool JoinAnother(Grouping& grouping, PlaneStore& store, ComparisonTable& comparisons,
+                 const WorldMap& world, size_t left, int64_t id, int64_t now,
                  const MapperOptions& options) {
-  const RltPlane& plane = *state.Plane(id);
+  const RltPlane& plane = *store.Plane(id);
   int best = options.regrouping.min_interval - 1;
-  size_t target = state.groups.size();
-  for (size_t h = state.open_from; h < state.groups.size(); ++h) {
-    const Group& candidate = state.groups[h];
+  size_t target = grouping.groups.size();
+  for (size_t h = grouping.open_from; h < grouping.groups.size(); ++h) {
+    const Group& candidate = grouping.groups[h];
     if (h == left || candidate.Frozen()) continue;
     for (int64_t m : candidate.members) {
-      const int common = CommonSince(plane, *state.Plane(m), INT64_MIN);
+      const int common = CommonSince(plane, *store.Plane(m), INT64_MIN);
       if (common > best) best = common, target = h;
     }
   }
-  if (target == state.groups.size()) return false;
-  Group& group = state.groups[target];
+  if (target == grouping.groups.size()) return false;
+  Group& group = grouping.groups[target];
   group.members.push_back(id);
   group.dirty = true;
-  RltPlane& joined = *state.Plane(id);
+  RltPlane& joined = *store.Plane(id);
   joined.groups.insert(std::upper_bound(joined.groups.begin(), joined.groups.end(), group.id),
                        group.id);
-  CompareWithMembers(state, group, id, now, options);
-  if (group.stage != GroupStage::kNew) group.order = ChooseOrder(group, state, options.comparison);
+  CompareWithMembers(store, comparisons, group, id, now, options);
+  if (group.stage != GroupStage::kNew)
+    group.order = ChooseOrder(group, {store, comparisons, world}, options.comparison);
   return true;
 }
 
 // "it is removed from the map altogether".
-void DropPlane(MapperState& state, int64_t id) {
-  for (auto it = state.comparisons.begin(); it != state.comparisons.end();) {
-    it = it->first.first == id || it->first.second == id ? state.comparisons.erase(it)
-                                                         : std::next(it);
-  }
-  state.global.erase(id);
-  state.placed_by.erase(id);
-  state.chained_alpha.erase(id);
-  state.recent.erase(id);
-  state.ungrouped.erase(std::remove(state.ungrouped.begin(), state.ungrouped.end(), id),
-                        state.ungrouped.end());
-  state.planes.erase(id);
-  state.map_changed = true;
+void DropPlane(int64_t id, Grouping& grouping, PlaneStore& store, ComparisonTable& comparisons,
+               WorldMap& world) {
+  comparisons.Forget(id);
+  world.Forget(id);
+  grouping.Forget(id);
+  store.Forget(id);
 }
 
 // The second evaluation of §II.F: members whose comparisons in the group are too short are
 // taken out; one in no other group is placed into another group or dropped.
-void RegroupMembers(MapperState& state, size_t g, int64_t now, const MapperOptions& options) {
-  Group& group = state.groups[g];
+void RegroupMembers(Grouping& grouping, PlaneStore& store, ComparisonTable& comparisons,
+                    WorldMap& world, size_t g, int64_t now, const MapperOptions& options) {
+  Group& group = grouping.groups[g];
   if (group.members.size() < 2) return;
   // Pairs never compared since they were grouped (one left the view first) are compared now
   // over what both observed: the interval they really share.
   const std::vector<int64_t> members = group.members;
   for (size_t i = 0; i < members.size(); ++i) {
     for (size_t j = i + 1; j < members.size(); ++j) {
-      if (state.FindComparison(members[i], members[j]) == nullptr &&
-          CommonSince(*state.Plane(members[i]), *state.Plane(members[j]), INT64_MIN) > 0) {
+      if (comparisons.Find(members[i], members[j]) == nullptr &&
+          CommonSince(*store.Plane(members[i]), *store.Plane(members[j]), INT64_MIN) > 0) {
         const PairKey key = KeyOf(members[i], members[j]);
-        state.comparisons.try_emplace(key, key.first, key.second)
-            .first->second.Update(*state.Plane(key.first), *state.Plane(key.second), now,
+        comparisons.pairs.try_emplace(key, key.first, key.second)
+            .first->second.Update(*store.Plane(key.first), *store.Plane(key.second), now,
                                   options.comparison, options.registration.last_seen_window);
       }
     }
   }
   std::vector<int64_t> short_lived;
   for (int64_t m : members) {
-    if (MemberInterval(state, group, m) < options.regrouping.min_interval) short_lived.push_back(m);
+    if (MemberInterval(comparisons, group, m) < options.regrouping.min_interval)
+      short_lived.push_back(m);
   }
   for (int64_t id : short_lived) {
-    Leave(state, group, id);
-    if (!state.Plane(id)->groups.empty()) continue;  // another group still places it
-    if (!JoinAnother(state, g, id, now, options)) DropPlane(state, id);
+    Leave(store, group, id);
+    if (!store.Plane(id)->groups.empty()) continue;  // another group still places it
+    if (!JoinAnother(grouping, store, comparisons, world, g, id, now, options))
+      DropPlane(id, grouping, store, comparisons, world);
   }
 }
 
@@ -130,19 +128,20 @@ int64_t ObservationHorizon(const MapperOptions& options) {
   return options.regrouping.freeze_after + options.grouping.covisible_window;
 }
 
-void Regroup(MapperState& state, int64_t now, const MapperOptions& options) {
+void Regroup(int64_t now, const MapperOptions& options, Grouping& grouping, PlaneStore& store,
+             ComparisonTable& comparisons, WorldMap& world) {
   const RegroupingOptions& o = options.regrouping;
-  for (size_t g = state.open_from; g < state.groups.size(); ++g) {
-    Group& group = state.groups[g];
+  for (size_t g = grouping.open_from; g < grouping.groups.size(); ++g) {
+    Group& group = grouping.groups[g];
     const int64_t age = now - group.created;
     if (o.enabled && group.stage == GroupStage::kNew && age >= o.reorder_after) {
-      group.order = ChooseOrder(group, state, options.comparison);
+      group.order = ChooseOrder(group, {store, comparisons, world}, options.comparison);
       group.stage = GroupStage::kReordered;
       group.dirty = true;
     }
     if (o.enabled && group.stage == GroupStage::kReordered && age >= o.regroup_after) {
-      RegroupMembers(state, g, now, options);
-      group.order = ChooseOrder(group, state, options.comparison);
+      RegroupMembers(grouping, store, comparisons, world, g, now, options);
+      group.order = ChooseOrder(group, {store, comparisons, world}, options.comparison);
       group.stage = GroupStage::kRegrouped;
       group.dirty = true;
     }
@@ -152,21 +151,22 @@ void Regroup(MapperState& state, int64_t now, const MapperOptions& options) {
       group.stage = GroupStage::kFrozen;
     }
   }
-  while (state.open_from < state.groups.size() && state.groups[state.open_from].Frozen()) {
-    ++state.open_from;
+  while (grouping.open_from < grouping.groups.size() &&
+         grouping.groups[grouping.open_from].Frozen()) {
+    ++grouping.open_from;
   }
 }
 
-void DropOldObservations(MapperState& state, const std::vector<int64_t>& visible, int64_t now,
-                         const MapperOptions& options) {
+void DropOldObservations(const std::vector<int64_t>& visible, int64_t now,
+                         const MapperOptions& options, PlaneStore& store) {
   const int64_t before = now - ObservationHorizon(options);
   for (int64_t id : visible) {
-    if (RltPlane* plane = state.Plane(id)) plane->DropBefore(before);
+    if (RltPlane* plane = store.Plane(id)) plane->DropBefore(before);
   }
   // Planes out of view keep theirs until the next sweep.
-  if (state.last_sweep >= 0 && now - state.last_sweep < options.regrouping.sweep_period) return;
-  state.last_sweep = now;
-  for (auto& [id, plane] : state.planes) plane.DropBefore(before);
+  if (store.last_sweep >= 0 && now - store.last_sweep < options.regrouping.sweep_period) return;
+  store.last_sweep = now;
+  for (auto& [id, plane] : store.planes) plane.DropBefore(before);
 }
 
 }  // namespace relplane::mapper

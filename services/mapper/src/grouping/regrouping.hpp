@@ -11,8 +11,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "comparison/comparison_table.hpp"
+#include "global_map/world_map.hpp"
+#include "grouping/group.hpp"
+#include "plane_store/plane_store.hpp"
 #include "relplane/mapper/options.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
@@ -22,11 +25,14 @@ int64_t ObservationHorizon(const MapperOptions& options);
 
 // One regrouping step at iteration `now`: moves every group that has reached an age to its
 // next stage (reorder, regroup, freeze). Changed groups are marked dirty.
-void Regroup(MapperState& state, int64_t now, const MapperOptions& options);
+// A rltplane taken out of its groups and placed in no other is dropped from every part of the map
+// ("removed from the map altogether").
+void Regroup(int64_t now, const MapperOptions& options, Grouping& grouping, PlaneStore& store,
+             ComparisonTable& comparisons, WorldMap& world);
 
 // Drops the observations regrouping can no longer reach: the visible planes' every iteration,
 // every plane's now and then (bounded memory).
-void DropOldObservations(MapperState& state, const std::vector<int64_t>& visible, int64_t now,
-                         const MapperOptions& options);
+void DropOldObservations(const std::vector<int64_t>& visible, int64_t now,
+                         const MapperOptions& options, PlaneStore& store);
 
 }  // namespace relplane::mapper

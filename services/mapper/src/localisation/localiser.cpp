@@ -9,16 +9,16 @@ Localiser::Localiser(const MapperOptions& options)
       max_coast_(options.motion.max_coast),
       start_{options.start_pose.x, options.start_pose.y, options.start_pose.yaw} {}
 
-std::vector<Sighting> Localiser::Sightings(const LocaliserFrame& frame, const MapperState& state,
-                                           bool initializing) const {
+std::vector<Sighting> Localiser::Sightings(const LocaliserFrame& frame, const PlaneStore& store,
+                                           const WorldMap& world, bool initializing) const {
   std::vector<Sighting> sightings;
   for (int64_t id : *frame.visible) {
-    const RltPlane* plane = state.Plane(id);
+    const RltPlane* plane = store.Plane(id);
     if (plane == nullptr || plane->LastSeen() != frame.iteration) continue;
     if (!initializing) {
-      auto it = state.global.find(id);
-      if (it != state.global.end()) sightings.push_back({&plane->Latest(), plane, it->second});
-    } else if (plane->FirstSeen() == state.first_iteration) {
+      auto it = world.global.find(id);
+      if (it != world.global.end()) sightings.push_back({&plane->Latest(), plane, it->second});
+    } else if (plane->FirstSeen() == frame.first_iteration) {
       // Before the first group: the walls' lines as first seen from the start pose.
       sightings.push_back(
           {&plane->Latest(), plane, PlacementOf(plane->Observations().front(), start_, -1)});
@@ -27,13 +27,14 @@ std::vector<Sighting> Localiser::Sightings(const LocaliserFrame& frame, const Ma
   return sightings;
 }
 
-PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const MapperState& state,
+PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const PlaneStore& store,
+                                 const WorldMap& world, const Trajectory& trajectory,
                                  const LearnedFrustum& frustum, const MotionModel& motion) {
   const int64_t iteration = frame.iteration;
-  const bool initializing = state.global.empty();
-  std::vector<Sighting> sightings = Sightings(frame, state, initializing);
+  const bool initializing = world.global.empty();
+  std::vector<Sighting> sightings = Sightings(frame, store, world, initializing);
   const bool motion_known = frame.motion.known;
-  const std::set<int64_t>& fixed = state.trajectory.fixed;
+  const std::set<int64_t>& fixed = trajectory.fixed;
   // How far off the prediction may be: odometry says so itself; a learnt velocity drifts with
   // the iterations since the walls last fixed the position.
   const Prediction prediction =
@@ -43,8 +44,7 @@ PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const MapperState&
           : Prediction{};
   bool ends_seen = false;
   auto localise = [&](const geometry::Pose2& previous) {
-    PoseEstimate est = mapper::Localise(sightings, previous, frustum, options_, held_,
-                                        prediction);
+    PoseEstimate est = mapper::Localise(sightings, previous, frustum, options_, held_, prediction);
     if (est.status != PoseStatus::kMotionModel || motion_known || ends_seen) return est;
     // The walls leave a direction open and the motion is not known (the start, moving off
     // after a turn on the spot; not while turning): the wall ends seen from poses the walls fixed
@@ -54,7 +54,7 @@ PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const MapperState&
     ends_seen = true;
     for (Sighting& x : sightings) {
       for (int e = 0; e < 2; ++e) {
-        const SeenWall seen = EndSeenFromFixedPoses(state, *x.plane, e);
+        const SeenWall seen = EndSeenFromFixedPoses(trajectory, *x.plane, e);
         x.end_seen[e] = seen.valid;
         if (seen.valid) x.end[e] = seen.edge[e];
       }
@@ -82,7 +82,7 @@ PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const MapperState&
       !motion_known && estimate.status == PoseStatus::kMotionModel && !estimate.end_moved;
   held_ = held ? held_ + 1 : 0;
   if (initializing) estimate.status = PoseStatus::kInitializing;
-  if (state.first_iteration == iteration) estimate.pose = frame.previous_pose;
+  if (frame.first_iteration == iteration) estimate.pose = frame.previous_pose;
   return estimate;
 }
 

@@ -6,12 +6,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "global_map/world_map.hpp"
 #include "localisation/frustum.hpp"
 #include "localisation/pose_solver.hpp"
 #include "motion/motion_model.hpp"
+#include "motion/trajectory.hpp"
+#include "plane_store/plane_store.hpp"
 #include "relplane/mapper/options.hpp"
 #include "relplane/mapper/types.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
@@ -22,14 +24,16 @@ struct LocaliserFrame {
   geometry::Pose2 previous_pose;    // its pose (the start pose at the first)
   Motion motion;                    // the motion model's prediction for this iteration
   const std::vector<int64_t>* visible = nullptr;  // rltplanes seen now, sorted
+  int64_t first_iteration = -1;                   // the start pose's iteration
 };
 
 class Localiser {
  public:
   explicit Localiser(const MapperOptions& options);
 
-  PoseEstimate Localise(const LocaliserFrame& frame, const MapperState& state,
-                        const LearnedFrustum& frustum, const MotionModel& motion);
+  PoseEstimate Localise(const LocaliserFrame& frame, const PlaneStore& store, const WorldMap& world,
+                        const Trajectory& trajectory, const LearnedFrustum& frustum,
+                        const MotionModel& motion);
 
   // Iterations in a row whose position was held still: no motion known, the walls leaving the
   // heading open and no wall end moving it (the pose solver's `held`).
@@ -38,8 +42,8 @@ class Localiser {
  private:
   // The walls in view that the map places (or, before the first group, that were seen from the
   // start pose), as sightings for the pose solver.
-  std::vector<Sighting> Sightings(const LocaliserFrame& frame, const MapperState& state,
-                                  bool initializing) const;
+  std::vector<Sighting> Sightings(const LocaliserFrame& frame, const PlaneStore& store,
+                                  const WorldMap& world, bool initializing) const;
 
   LocalisationOptions options_;
   int max_coast_;

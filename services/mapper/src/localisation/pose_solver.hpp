@@ -5,12 +5,12 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "global_map/placement.hpp"
 #include "localisation/frustum.hpp"
 #include "plane_store/rltplane.hpp"
 #include "relplane/common/geometry.hpp"
 #include "relplane/mapper/options.hpp"
 #include "relplane/mapper/types.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 

@@ -9,7 +9,8 @@
 
 namespace relplane::mapper {
 
-int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const MapperState& state,
+int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const PlaneStore& store,
+                    const Grouping& grouping, const WorldMap& world, const Trajectory& trajectory,
                     const std::set<int64_t>& taken, const BacktrackOptions& options) {
   if (!options.enabled) return -1;
   const double alpha = geometry::WrapAngle(pose.yaw + obs.Alpha());
@@ -17,7 +18,7 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const M
   double best = -1.0;
   bool best_placed = false;  // the best has a mapped end
   int64_t best_id = -1;
-  for (const auto& [id, placed] : state.global) {
+  for (const auto& [id, placed] : world.global) {
     // Walls with a mapped line at least: an orientation alone has no place to compare with.
     if (taken.count(id) || placed.known == Known::kAngle) continue;
     const double dalpha = std::abs(geometry::WrapAngle(placed.alpha - alpha));
@@ -35,10 +36,10 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const M
     // it (hallway_out_and_back, σ = 1 cm, seed 119: ATE 0.016 → 0.029 m). As a new rltplane,
     // the end was found within 4 mm.
     if (placed.known == Known::kLine) {
-      const auto by = state.placed_by.find(id);
-      if (by == state.placed_by.end() || by->second < 0 ||
-          by->second >= static_cast<int64_t>(state.groups.size()) ||
-          !state.groups[static_cast<size_t>(by->second)].Frozen()) {
+      const auto by = world.placed_by.find(id);
+      if (by == world.placed_by.end() || by->second < 0 ||
+          by->second >= static_cast<int64_t>(grouping.groups.size()) ||
+          !grouping.groups[static_cast<size_t>(by->second)].Frozen()) {
         continue;
       }
     }
@@ -46,11 +47,11 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const M
     const double dist = std::abs(n.dot(0.5 * (e0 + e1) - placed.point));
     if (dist > options.max_distance) continue;
     // Overlap along the wall with the mapped extent, widened by a margin.
-    const RltPlane* plane = state.planes.count(id) ? &state.planes.at(id) : nullptr;
+    const RltPlane* plane = store.planes.count(id) ? &store.planes.at(id) : nullptr;
     if (plane == nullptr) continue;
     {
       Eigen::Vector2d lo, hi;
-      WallEnds(state, *plane, placed, &lo, &hi);
+      WallEnds(trajectory, *plane, placed, &lo, &hi);
       // A wall known by its line only is drawn as last seen, from the pose then: often a sliver
       // beside a door the sensor walked through. Its first sighting, from the pose then, shows
       // how far it reached. Without it the far part of a room's first wall, seen again at the

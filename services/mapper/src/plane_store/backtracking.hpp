@@ -5,14 +5,18 @@
 
 #include <set>
 
+#include "global_map/world_map.hpp"
+#include "grouping/group.hpp"
+#include "motion/trajectory.hpp"
+#include "plane_store/plane_store.hpp"
 #include "relplane/common/geometry.hpp"
 #include "relplane/mapper/options.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
 // The mapped rltplane `obs` (seen from `pose`) matches, or -1. Rltplanes in `taken` are skipped.
-int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const MapperState& state,
+int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const PlaneStore& store,
+                    const Grouping& grouping, const WorldMap& world, const Trajectory& trajectory,
                     const std::set<int64_t>& taken, const BacktrackOptions& options);
 
 }  // namespace relplane::mapper

@@ -8,11 +8,14 @@
 #include <vector>
 
 #include "global_map/loop_closure.hpp"
+#include "global_map/world_map.hpp"
+#include "grouping/group.hpp"
 #include "localisation/frustum.hpp"
 #include "motion/motion_model.hpp"
+#include "motion/trajectory.hpp"
 #include "plane_store/observation.hpp"
+#include "plane_store/plane_store.hpp"
 #include "relplane/mapper/options.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
@@ -27,17 +30,21 @@ struct RegistrationFrame {
 
 struct Registered {
   std::vector<int64_t> visible;  // the rltplanes seen now, sorted
-  ClosingLoop loop;              // a loop closing at this iteration, if any
+  std::vector<int64_t>
+      created;       // the new rltplanes among them, in the order made: ungrouped (§II.B)
+  ClosingLoop loop;  // a loop closing at this iteration, if any
 };
 
-// Adds the observations (consumed) to the plane store: state.planes, ungrouped, recent, next_id.
+// Adds the observations (consumed) to the plane store (planes, recent, next_id); the new rltplanes
+// are returned for the grouping step's ungrouped list (§II.B).
 Registered RegisterPlanes(const RegistrationFrame& frame, std::vector<Observation>& observations,
                           const LearnedFrustum& frustum, const MotionModel& motion,
-                          const MapperOptions& options, MapperState& state);
+                          const MapperOptions& options, const Grouping& grouping,
+                          const WorldMap& world, const Trajectory& trajectory, PlaneStore& store);
 
 // Each plane seen now keeps the pose it was last seen from, and its first sighting from a known
 // pose (§II.D: a group is placed from its members' sightings).
 void NoteSightingPose(const std::vector<int64_t>& visible, const geometry::Pose2& pose,
-                      MapperState& state);
+                      PlaneStore& store);
 
 }  // namespace relplane::mapper

@@ -17,7 +17,6 @@ double Overlap(double a0, double a1, double b0, double b1) {
   return std::max(0.0, std::min(a1, b1) - std::max(a0, b0)) / shorter;
 }
 
-
 // Does `piece` lie on `wall`'s line, turned by no more than the plane-equation test allows and
 // overlapping it in height? Judged by the distance to the wall's line at the piece's middle,
 // not the offsets d: a piece a few degrees off has its d far from the wall's when it lies far
@@ -87,14 +86,14 @@ void Absorb(const Observation& piece, Observation* wall,
 
 // Are rltplanes `a` and `b` the same surface: `a`'s latest sighting, moved from the pose it was
 // seen from into the one `b`'s latest was seen from, on the line of `b`'s?
-bool SameSurface(const MapperState& state, int64_t a, int64_t b,
+bool SameSurface(const PlaneStore& store, const Trajectory& trajectory, int64_t a, int64_t b,
                  const RegistrationOptions& options) {
-  const auto pa = state.planes.find(a), pb = state.planes.find(b);
-  if (pa == state.planes.end() || pb == state.planes.end()) return false;
+  const auto pa = store.planes.find(a), pb = store.planes.find(b);
+  if (pa == store.planes.end() || pb == store.planes.end()) return false;
   const Observation& la = pa->second.Latest();
   const Observation& lb = pb->second.Latest();
-  const auto from = state.trajectory.poses.find(la.iteration), to = state.trajectory.poses.find(lb.iteration);
-  if (from == state.trajectory.poses.end() || to == state.trajectory.poses.end()) return false;
+  const auto from = trajectory.poses.find(la.iteration), to = trajectory.poses.find(lb.iteration);
+  if (from == trajectory.poses.end() || to == trajectory.poses.end()) return false;
   const geometry::Pose2 motion = to->second.Inverse() * from->second;
   Observation moved = la;
   moved.normal = motion.Rotation() * la.normal;
@@ -126,19 +125,20 @@ using Candidate = std::tuple<double, size_t, int64_t>;
 std::vector<int64_t> AlsoSeenAs(const std::vector<Observation>& observations,
                                 const std::vector<int64_t>& match,
                                 const std::vector<Candidate>& candidates,
-                                const std::map<int64_t, size_t>& taken_by, const MapperState& state,
+                                const std::map<int64_t, size_t>& taken_by, const PlaneStore& store,
+                                const WorldMap& world, const Trajectory& trajectory,
                                 const RegistrationOptions& options) {
   std::vector<int64_t> also(observations.size(), -1);
   std::set<int64_t> also_taken;
   for (const auto& [score, k, id] : candidates) {
     const Observation& obs = observations[k];
     if (match[k] < 0 || also[k] >= 0 || id == match[k] || !obs.cut[0] || !obs.cut[1] ||
-        taken_by.count(id) || also_taken.count(id) || state.global.count(id) == 0 ||
-        state.global.count(match[k]) != 0) {
+        taken_by.count(id) || also_taken.count(id) || world.global.count(id) == 0 ||
+        world.global.count(match[k]) != 0) {
       continue;
     }
-    if (state.planes.at(id).Count() <= state.planes.at(match[k]).Count()) continue;
-    if (!SameSurface(state, id, match[k], options)) continue;
+    if (store.planes.at(id).Count() <= store.planes.at(match[k]).Count()) continue;
+    if (!SameSurface(store, trajectory, id, match[k], options)) continue;
     also[k] = id;
     also_taken.insert(id);
   }
@@ -190,18 +190,19 @@ double MatchScore(const Observation& latest, const Observation& obs,
 }
 
 std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observations,
-                                          const MapperState& state,
+                                          const PlaneStore& store, const WorldMap& world,
+                                          const Trajectory& trajectory,
                                           const RegistrationOptions& options,
                                           const geometry::Pose2* now, std::vector<int64_t>* also) {
   std::vector<Candidate> candidates;
-  for (int64_t id : state.recent) {
-    const auto it = state.planes.find(id);
-    if (it == state.planes.end()) continue;
+  for (int64_t id : store.recent) {
+    const auto it = store.planes.find(id);
+    if (it == store.planes.end()) continue;
     const Observation& latest = it->second.Latest();
     std::optional<geometry::Pose2> motion;  // from the frame `latest` was seen in to now
     if (now != nullptr) {
-      const auto then = state.trajectory.poses.find(latest.iteration);
-      if (then != state.trajectory.poses.end()) motion = now->Inverse() * then->second;
+      const auto then = trajectory.poses.find(latest.iteration);
+      if (then != trajectory.poses.end()) motion = now->Inverse() * then->second;
     }
     for (size_t k = 0; k < observations.size(); ++k) {
       const double score = MatchScore(latest, observations[k], options);
@@ -249,22 +250,23 @@ std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observ
   // its match, so that no plane loses its own rltplane to a piece.
   for (const auto& [score, k, id] : candidates) {
     if (piece_of[k] < 0 || match[k] >= 0 || id == piece_of[k] || taken_by.count(id)) continue;
-    if (state.planes.at(id).Count() <= state.planes.at(piece_of[k]).Count()) continue;
-    if (!SameSurface(state, id, piece_of[k], options)) continue;
+    if (store.planes.at(id).Count() <= store.planes.at(piece_of[k]).Count()) continue;
+    if (!SameSurface(store, trajectory, id, piece_of[k], options)) continue;
     match[k] = id;
     taken_by.emplace(id, k);
   }
   if (also != nullptr)
-    *also = AlsoSeenAs(observations, match, candidates, taken_by, state, options);
+    *also =
+        AlsoSeenAs(observations, match, candidates, taken_by, store, world, trajectory, options);
   return match;
 }
 
-void MarkJumpedEnds(const std::vector<int64_t>& match, const MapperState& state,
-                    const geometry::Pose2& pose, std::vector<Observation>* observations,
-                    const RegistrationOptions& options) {
+void MarkJumpedEnds(const std::vector<int64_t>& match, const PlaneStore& store,
+                    const Trajectory& trajectory, const geometry::Pose2& pose,
+                    std::vector<Observation>* observations, const RegistrationOptions& options) {
   for (size_t k = 0; k < observations->size(); ++k) {
-    const auto it = match[k] >= 0 ? state.planes.find(match[k]) : state.planes.end();
-    if (it == state.planes.end()) continue;
+    const auto it = match[k] >= 0 ? store.planes.find(match[k]) : store.planes.end();
+    if (it == store.planes.end()) continue;
     Observation& obs = (*observations)[k];
     const auto& all = it->second.Observations();
     const Eigen::Vector2d t = pose.Rotation() * obs.Direction();
@@ -274,8 +276,8 @@ void MarkJumpedEnds(const std::vector<int64_t>& match, const MapperState& state,
       for (size_t i = all.size(); i > 0; --i) {
         const Observation& then = all[i - 1];
         if (then.iteration < obs.iteration - options.end_memory) break;
-        const auto seen_from = state.trajectory.poses.find(then.iteration);
-        if (then.cut[e] || seen_from == state.trajectory.poses.end()) continue;
+        const auto seen_from = trajectory.poses.find(then.iteration);
+        if (then.cut[e] || seen_from == trajectory.poses.end()) continue;
         const Eigen::Vector2d jump = seen_from->second * then.edge[e] - pose * obs.edge[e];
         obs.cut[e] = std::abs(t.dot(jump)) > options.end_jump;
         break;

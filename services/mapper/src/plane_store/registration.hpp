@@ -6,9 +6,11 @@
 #include <functional>
 #include <vector>
 
+#include "global_map/world_map.hpp"
+#include "motion/trajectory.hpp"
 #include "plane_store/observation.hpp"
+#include "plane_store/plane_store.hpp"
 #include "relplane/mapper/options.hpp"
-#include "state.hpp"
 
 namespace relplane::mapper {
 
@@ -34,14 +36,14 @@ void DropRepeatedSightings(
     const std::function<bool(const Eigen::Vector2d&)>& at_view_edge = nullptr);
 
 // For each observation, the id of the rltplane it registers to, or -1 (a new rltplane). Only
-// rltplanes in `state.recent` are compared, so the cost does not grow with the map. Each
+// rltplanes in `store.recent` are compared, so the cost does not grow with the map. Each
 // rltplane takes at most one observation; the highest scores are assigned first. A plane on
 // the line of one that took a rltplane it matches is a piece of that surface and takes no
 // lesser match, but another rltplane of that surface with more sightings that no plane took
 // (its latest sighting, moved from the pose it was seen from into the taken one's, on that one's
 // line).
 // With `now` (the sensor's pose this iteration, as far as it is known), a match must also pass
-// the tests with the latest observation moved from the pose it was seen from (`state.trajectory.poses`)
+// the tests with the latest observation moved from the pose it was seen from (`trajectory.poses`)
 // into it. Compared untransformed, a sighting a few iterations old is judged from where the
 // sensor was then: a turn on the spot of 0.12 rad in four iterations moved a pilaster's face
 // 4 m away 0.5 m along the wall, onto the wall 0.3 m behind it, which registered to the face's
@@ -54,7 +56,8 @@ void DropRepeatedSightings(
 // view) and the rltplane it registered to is a younger one the map does not place (AlsoSeenAs
 // in registration.cpp).
 std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observations,
-                                          const MapperState& state,
+                                          const PlaneStore& store, const WorldMap& world,
+                                          const Trajectory& trajectory,
                                           const RegistrationOptions& options,
                                           const geometry::Pose2* now = nullptr,
                                           std::vector<int64_t>* also = nullptr);
@@ -66,8 +69,9 @@ std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observ
 // piece grows into the whole wall. Such an end is marked cut, so it never becomes the static
 // edge (§II.C) the rltplane learnt at the other place: the end mapped metres away would be
 // taken for it. `pose` is the latest estimate (one frame's motion is far below the jump).
-void MarkJumpedEnds(const std::vector<int64_t>& match, const MapperState& state,
-                    const geometry::Pose2& pose, std::vector<Observation>* observations,
+void MarkJumpedEnds(const std::vector<int64_t>& match, const PlaneStore& store,
+                    const Trajectory& trajectory, const geometry::Pose2& pose,
+                    std::vector<Observation>* observations,
                     const RegistrationOptions& options = {});
 
 }  // namespace relplane::mapper

@@ -6,9 +6,9 @@
 
 namespace relplane::mapper {
 
-int MarkViewCuts(const LearnedFrustum& frustum, MapperState& state) {
+int MarkViewCuts(const LearnedFrustum& frustum, PlaneStore& store, Grouping& grouping) {
   int marked = 0;
-  for (auto& entry : state.planes) {
+  for (auto& entry : store.planes) {
     const int64_t id = entry.first;
     RltPlane& plane = entry.second;  // named, not a structured binding: the lambda below uses it
     const auto& all = plane.Observations();
@@ -29,7 +29,7 @@ int MarkViewCuts(const LearnedFrustum& frustum, MapperState& state) {
       for (int e = 0; e < 2; ++e) seen.cut[e] = seen.cut[e] || obs->cut[e];
     };
     revise(plane.first_seen);
-    for (Group& group : state.groups) {
+    for (Group& group : grouping.groups) {
       if (std::find(group.members.begin(), group.members.end(), id) == group.members.end()) {
         continue;
       }

@@ -3,14 +3,15 @@
 // reports (LearnedFrustum): a wall's far end at the range creeps along with the sensor, so the
 // sightings before the range was learnt agree with it and it passed for the wall's end.
 
+#include "grouping/group.hpp"
 #include "localisation/frustum.hpp"
-#include "state.hpp"
+#include "plane_store/plane_store.hpp"
 
 namespace relplane::mapper {
 
 // Marks the stored edges `frustum` now finds cut that were judged uncut before it knew its range
 // limit, with the sightings kept from them (a plane's first, a group's when made and from fixed
 // poses), and has the groups holding them built again. Returns how many edges it marked.
-int MarkViewCuts(const LearnedFrustum& frustum, MapperState& state);
+int MarkViewCuts(const LearnedFrustum& frustum, PlaneStore& store, Grouping& grouping);
 
 }  // namespace relplane::mapper

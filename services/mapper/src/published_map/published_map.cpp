@@ -10,19 +10,19 @@ namespace relplane::mapper {
 MapSnapshot PublishedMap(const MapperState& state, const MapperOptions& options) {
   const double height = options.start_pose.z;  // planes are mapped at sensor z + this
   MapSnapshot snapshot;
-  for (const auto& [id, placed] : state.global) {
-    const RltPlane& plane = state.planes.at(id);
+  for (const auto& [id, placed] : state.world.global) {
+    const RltPlane& plane = state.store.planes.at(id);
     if (placed.known == Known::kAngle) continue;
     const Eigen::Vector2d n = NormalOf(placed.alpha);
     Eigen::Vector2d lo, hi;
-    WallEnds(state, plane, placed, &lo, &hi);
+    WallEnds(state.trajectory, plane, placed, &lo, &hi);
     const double z0 = plane.ZMin() + height, z1 = plane.ZMax() + height;
     MappedPlane m;
     m.id = id;
     m.normal = Eigen::Vector3d(n.x(), n.y(), 0.0);
     m.d = -n.dot(placed.point);
-    m.vertices = {{lo.x(), lo.y(), z0}, {hi.x(), hi.y(), z0}, {hi.x(), hi.y(), z1},
-                  {lo.x(), lo.y(), z1}};
+    m.vertices = {
+        {lo.x(), lo.y(), z0}, {hi.x(), hi.y(), z0}, {hi.x(), hi.y(), z1}, {lo.x(), lo.y(), z1}};
     const Eigen::Vector2d mid = 0.5 * (lo + hi);
     m.centroid = Eigen::Vector3d(mid.x(), mid.y(), 0.5 * (z0 + z1));
     m.observations = plane.Count();
@@ -33,7 +33,7 @@ MapSnapshot PublishedMap(const MapperState& state, const MapperOptions& options)
     snapshot.planes.push_back(std::move(m));
   }
   CleanUpWalls(&snapshot.planes, options.published_map);  // §II.D end
-  for (const Group& g : state.groups) {
+  for (const Group& g : state.grouping.groups) {
     snapshot.groups.push_back({g.id, g.relative.basis, g.members});
   }
   return snapshot;

@@ -13,7 +13,7 @@
 
 namespace relplane::mapper {
 
-struct MapperState;  // the steps' shared knowledge (services/mapper/src/state.hpp)
+struct MapperState;  // what the steps own, part by part (services/mapper/src/state.hpp)
 
 class Mapper {
  public:
