@@ -10,6 +10,7 @@
 #include "global_map/group_prior.hpp"
 #include "global_map/pose_graph.hpp"
 #include "global_map/relative_map.hpp"
+#include "localisation/least_squares.hpp"
 #include "localisation/pose_solver.hpp"
 
 namespace relplane::mapper {

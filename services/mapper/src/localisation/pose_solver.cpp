@@ -176,7 +176,7 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
         // less than the learnt velocity: it stands for frames and jumps a column.
         const double spacing = m.frustum.EdgeSpacing(x.obs->edge[e], x.obs->d);
         if (motion_known && spacing > 2.0 * LearnedFrustum::kEdgeNoise) continue;
-          sys->Add(t, along, motion_known ? EndWeight(m.frustum, *x.obs, e) : 1.0);
+        sys->Add(t, along, motion_known ? EndWeight(m.frustum, *x.obs, e) : 1.0);
         placed_ends += motion_known ? 1 : 0;
         continue;
       }
@@ -248,12 +248,11 @@ PoseEstimate SolveOnce(const std::vector<Sighting>& sightings, const std::vector
   const double information = eig.eigenvalues()(0);
   const bool tracking = planes.size() >= 2 && information >= options.min_information;
   if (!tracking) {
-    out.end_moved =
-        AddMotionModelEnds(sightings, use, rot, eig.eigenvectors().col(0), m, &sys);
+    out.end_moved = AddMotionModelEnds(sightings, use, rot, eig.eigenvectors().col(0), m, &sys);
   }
   // The previous position only decides a direction the walls leave open.
-  const Vector2d pos = SolveWithPrior(sys.a, sys.b, m.previous.Translation(),
-                                      options.prior_weight, options.min_information);
+  const Vector2d pos = SolveWithPrior(sys.a, sys.b, m.previous.Translation(), options.prior_weight,
+                                      options.min_information);
   out.pose = {pos.x(), pos.y(), heading.yaw};
   out.planes = static_cast<int>(planes.size());
   out.status = tracking ? PoseStatus::kTracking : PoseStatus::kMotionModel;
@@ -263,8 +262,8 @@ PoseEstimate SolveOnce(const std::vector<Sighting>& sightings, const std::vector
 
 // The trial without the worst-fitting wall: kept where the rest still fix the position, agree
 // among themselves, and put that wall off by more than a map's error.
-bool TrialHolds(const std::vector<Sighting>& sightings, const std::vector<bool>& use,
-                int suspect, const PoseEstimate& without, const LocalisationOptions& options) {
+bool TrialHolds(const std::vector<Sighting>& sightings, const std::vector<bool>& use, int suspect,
+                const PoseEstimate& without, const LocalisationOptions& options) {
   bool agree = without.status == PoseStatus::kTracking &&
                std::abs(Residual(sightings[suspect], without.pose)) > options.misregistered;
   for (size_t k = 0; k < sightings.size() && agree; ++k) {
@@ -307,22 +306,6 @@ int WorstFit(const std::vector<Sighting>& sightings, const std::vector<bool>& us
 }
 
 }  // namespace
-
-Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& b,
-                               const Eigen::Vector2d& previous, double prior_weight,
-                               double min_information) {
-  // Solved along the eigenvectors of a, so the open direction is decoupled from the others.
-  Eigen::SelfAdjointEigenSolver<Matrix2d> eig(a);
-  const double prior = eig.eigenvalues()(0) < min_information ? prior_weight : 0.0;
-  Vector2d pos = Vector2d::Zero();
-  for (int k = 0; k < 2; ++k) {
-    const Vector2d v = eig.eigenvectors().col(k);
-    const double lambda = eig.eigenvalues()(k);
-    pos += v * (lambda < kOpenInformation ? v.dot(previous)
-                                          : (v.dot(b) + prior * v.dot(previous)) / (lambda + prior));
-  }
-  return pos;
-}
 
 Prediction LearntVelocity(int iterations, const LocalisationOptions& options) {
   if (iterations <= 0) return {};

@@ -7,6 +7,7 @@
 
 #include "global_map/placement.hpp"
 #include "localisation/frustum.hpp"
+#include "localisation/least_squares.hpp"
 #include "plane_store/rltplane.hpp"
 #include "relplane/common/geometry.hpp"
 #include "relplane/mapper/options.hpp"
@@ -36,19 +37,6 @@ struct Prediction {
 // A learnt velocity's prediction `iterations` after the walls last fixed the position: it drifts
 // by up to LocalisationOptions::drift_rate an iteration. Not known for 0 iterations.
 Prediction LearntVelocity(int iterations, const LocalisationOptions& options);
-
-// Information (smallest eigenvalue of the sum of n n^T over unit wall normals) below which
-// walls leave a direction open: lines within ~11 degrees of parallel.
-constexpr double kOpenInformation = 0.02;
-
-// Least squares a x = b for a position, with `previous` as a weak prior (weight `prior_weight`,
-// applied when the smallest information is below `min_information`). Along a direction the
-// equations leave open (walls within ~11 degrees of parallel) the previous position is kept as
-// it is: their lines' millimetre disagreements would otherwise move it by centimetres, through
-// the slight angle between them, every time it is solved.
-Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& b,
-                               const Eigen::Vector2d& previous, double prior_weight,
-                               double min_information);
 
 // Solves the sensor pose: yaw from the mean orientation difference (weighted by
 // OrientationSigma, so a short noisy wall such as a door jamb does not turn the heading),
