@@ -20,7 +20,7 @@ Eigen::Matrix2d RotationT(double alpha) {
 }
 
 // m: the segmenter's fit of a piece is known to about this over its length (as in the published
-// map's cleanup: a 0.2 m piece beside a jamb is a median 2.4 degrees off on the noisy office).
+// map's cleanup: a 0.2 m piece beside a jamb takes some of its points, a median 2.4 degrees off).
 constexpr double kShortPieceBlur = 0.03;
 
 }  // namespace

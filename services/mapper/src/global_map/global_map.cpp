@@ -48,9 +48,9 @@ double LineWeight(double lever, double length) {
 // Does the plane's first sighting show the end `ref` its relative map starts from? Only if the
 // latest uncut sighting of that end from a known pose lies where the first one did. A wall seen
 // whole across a door from the start pose (its edges where the view cut it, before the view was
-// learnt) is later known by the door-side end of its piece: that end lay 2.6 m along the wall
-// from the first sighting's, and the first group was placed 2.6 m off (an unseen office, 70
-// degree sensor).
+// learnt) is later known by the door-side end of its piece: that end lies metres along the wall
+// from the first sighting's, and the first group, placed from the first sighting's end, would
+// be off by as much (§II.D: the first group is placed from its members' first sightings).
 bool FirstSightingShowsEnd(const Trajectory& trajectory, const RltPlane& plane,
                            const SeenWall& first, int ref) {
   if (ref < 0 || first.cut[ref]) return false;
@@ -109,10 +109,10 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
   // Each line is weighed by how well its offset is known where the wall is: its fit's noise, and
   // a short piece's orientation bias (3 cm over its length) carried over the distance from the
   // edge it was measured from. A line known within kFullLine counts fully, as every line did: a
-  // 0.3 m pilaster side, fitted 1.2 degrees off and measured from a recess corner 2.3 m along
-  // its line, was 4.8 cm off where it stands, and as it became its group's link it decided the
-  // group's position along a hallway (the static edge that had decided it is only used where
-  // the lines leave a direction open), moving the group and the pose 6.4 cm back.
+  // short pilaster side, fitted a degree off and measured from a recess corner metres along its
+  // line, is centimetres off where it stands, and once it is its group's link it decides the
+  // group's position along a hallway (the static edge that decided it before is only used where
+  // the lines leave a direction open), moving the group and the pose back by as much.
   auto lines_at = [&](const Vector2d& guess, Matrix2d* a, Vector2d* b) {
     *a = Matrix2d::Zero();
     *b = Vector2d::Zero();
@@ -149,11 +149,10 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
     for (const PriorLine& line : prior_in.lines) {
       const Vector2d n = NormalOf(yaw + line.member.alpha);
       // Weighed as the links' lines are: a door jamb's line, placed through a comparison with the
-      // room's far wall where the two cross 5 m away, was 7 cm off where the jamb stands and
-      // counted as fully as the room's side walls; when the group's basis changed it moved the
-      // group, the pose and the room's walls 2.7 cm across the room (office, σ = 1 cm, seed 22:
-      // a wall mapped 6 cm off). A direction only such lines span, below kOpenInformation, is
-      // left to the ends' placement.
+      // room's far wall where the two cross metres away, is centimetres off where the jamb
+      // stands; counted as fully as the room's side walls, it moves the group, the pose and the
+      // room's walls across the room when the group's basis changes. A direction only such
+      // lines span, below kOpenInformation, is left to the ends' placement.
       double weight = 1.0;
       if (line.member.known == Known::kLine) {
         const Vector2d d = DirectionOf(line.member.alpha);
@@ -170,10 +169,9 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
   // a direction open (parallel walls), since an edge taken for static may not quite be. One
   // link's edge each, unless some agree with the prior along their wall and others lie more
   // than kEdgeGate from it: those are dropped. Where one link's piece in the group's relative
-  // map is paired at the wrong end (a hallway wall 2 m long whose end next to a recess was
-  // taken for its far end), the two edges of a group's links put it 2 m apart and their mean
-  // moved the group and the pose 1 m along the hallway in one iteration (hallway_out_and_back
-  // at 1 cm, the turn back).
+  // map is paired at the wrong end (a hallway wall whose end next to a recess is taken for its
+  // far end), the two edges of a group's links put it a wall's length apart, and their mean
+  // moves the group and the pose half that along the hallway in one iteration.
   Eigen::SelfAdjointEigenSolver<Matrix2d> eig(a);
   if (eig.eigenvalues()(0) < 0.5) {
     struct EdgeTie {
@@ -309,14 +307,13 @@ void PlaceMembers(const GlobalMapInputs& in, Group& group, const MapperOptions& 
       // No comparison pins its line yet: the line as seen when the group was made, from the pose
       // then (§II.A end: "transformed using current position"). In the first group that is one
       // sighting: it is turned about the middle of what was seen to the orientation the group's
-      // comparisons give it (§II.C, averaged over their intervals). As one sighting had it, a
-      // hallway wall's far piece fitted 0.4 degrees off in the start pose's view (a few of a
-      // jamb's points) kept that orientation, and the pose turned with it over the next 2 m (a
-      // doors loop at 1 cm, seed 29: 0.35 degrees by iteration 70). A later group's
-      // line fuses the sightings from fixed poses (LineWhenMade), which fix its orientation
-      // better than comparisons that do not even pin its line: turned to those, an office's
-      // wall went 1.7 degrees off, the next group was placed through it and a room's walls came
-      // out 7 cm off (office_other_sensor at 1 cm, seed 22).
+      // comparisons give it (§II.C, averaged over their intervals). As one sighting has it, a
+      // hallway wall's far piece fitted a fraction of a degree off in the start pose's view (a
+      // few of a jamb's points taken with it) keeps that orientation, and the pose turns with
+      // it over the next metres. A later group's line fuses the sightings from fixed poses
+      // (LineWhenMade), which fix its orientation better than comparisons that do not even pin
+      // its line: turned to those, a wall can go more than a degree off, and the next group,
+      // placed through it, carries that into its room's walls.
       const double alpha = placement.alpha;
       placement = PlacementOf(LineWhenMade(in, group, id, options), -1);
       if (group.id == 0) placement.alpha = alpha;
@@ -365,10 +362,10 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
     // Through its links as every comparison between mapped walls turns them, as localisation
     // sees them, not as the groups re-placed just before chained them: a group that places a
     // wall from a static edge metres along it from where an earlier group put the wall's line
-    // turns the line about that edge, and the chained orientation (0.65 degrees from the
-    // refined one, through a door's pieces) moved a room's side walls and the pose 6.8 cm
-    // across the room in one iteration (an unseen office, 70 degree sensor). Refining turns
-    // only the walls placed in this pass: without a link among them it would change nothing.
+    // turns the line about that edge, and the chained orientation (through a door's pieces, a
+    // fraction of a degree from the refined one) moves a room's side walls and the pose
+    // centimetres across the room in one iteration. Refining turns only the walls placed in
+    // this pass: without a link among them it would change nothing.
     bool link_replaced = false;
     for (const auto& [id, rel] : group.relative.members) {
       const auto by = world.placed_by.find(id);
@@ -406,11 +403,10 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
                                   ? plane->first_seen
                                   : SeenFrom(first, PoseAt(in, first.iteration, options));
         // Its end too where the sighting shows it, but not where the samples along the wall
-        // landed too far apart there (CoarselySampled): seen 5-6 m off at a grazing angle, the
-        // ends of a side wall's two pieces beside a door recess were sampled 23 and 31 cm apart
-        // and lay 5 and 14 cm short; the first group, placed between the two, put them 9 cm
-        // short, and the poses that took them went 13 cm along the hallway for the rest of the
-        // run (hallway_out_and_back, σ = 1 cm, seed 164).
+        // landed too far apart there (CoarselySampled): seen metres off at a grazing angle, the
+        // ends of a side wall's two pieces beside a door recess are sampled decimetres apart and
+        // lie centimetres short; the first group, placed between the two, puts them short, and
+        // the poses that take them stay off along the hallway for the rest of the run.
         // Its line is taken then, and the prior's ends, each as seen most finely, place it along.
         const int ref = rel.known == Known::kPoint &&
                                 FirstSightingShowsEnd(in.trajectory, *plane, seen, rel.ref) &&
@@ -455,14 +451,14 @@ void RefineGlobalOrientations(const GlobalMapInputs& in, const Grouping& groupin
   // group's planes are held (§II.D: it is placed from the start pose). Hard chaining (§II.D)
   // gives a wall its orientation from the one group that placed it, through that group's
   // comparisons only. A group made at a door holds the walls of the next room and, of the room
-  // it leaves, only the short pieces beside the door, whose fits are off by 1.2-1.5 degrees
+  // it leaves, only the short pieces beside the door, whose fits are off by a degree or more
   // towards the door, mirrored on its two sides (a piece takes some of the jamb's points): where
   // it holds more pieces of one side (both pieces of the wall and one jamb, the other jamb in the
-  // group before), the next room's walls came out 0.33 degrees off, and every later group and
-  // pose with them (an unseen office: two walls 6 cm off). The other side's comparisons with
-  // those walls were there, in other groups, and balance them: 0.09 degrees, the walls within
-  // 4 cm. Anchored at the chained values rather than at the last solution, so solving again
-  // after every placement does not walk the orientations away (as pose_graph.cpp's priors).
+  // group before), the next room's walls come out a fraction of a degree off, and every later
+  // group and pose with them. The other side's comparisons with those walls are there, in other
+  // groups, and balance them. Anchored at the chained values rather than at the last solution,
+  // so solving again after every placement does not walk the orientations away (as
+  // pose_graph.cpp's priors).
   // The planes placed before `from` were not re-placed: they are held as last solved.
   // Called before every re-placed group is solved (BuildGlobalMap): the cost follows those
   // groups, not the map, and sorted vectors stand in for trees.

@@ -42,7 +42,7 @@ const Observation& ObservedWithPose(const RltPlane& plane, const GlobalMapInputs
 // seen), kept in the group: the group can be placed again once the observation is dropped.
 // Kept only once the pose of the group's first iteration is known: a group is built before its
 // iteration is localised, and until then the latest sighting with a known pose is an older,
-// worse one (keeping it took noise-free office from 9 mm ATE to 30 mm).
+// worse one, from which the group, once it kept it, would be placed at every later build.
 SeenWall SeenWhenMade(const GlobalMapInputs& in, Group& group, int64_t id,
                       const MapperOptions& options) {
   SeenWall& kept = group.seen[id];
@@ -255,22 +255,23 @@ const SeenWall& FinestEndSighting(const GlobalMapInputs& in, Group& group, int64
 // Prior for `group`: a member's reference end as seen around when the group was made, put
 // back through its place in the relative map. First choice: the latest sighting of each such end
 // before the group was made, from a pose the walls fixed, or where the fixed poses have seen that
-// end more finely sampled since, that sighting. A pose the motion model carried
-// stood still along the hallway while the sensor moved on, and every group placed from it kept
-// that lag on the map (a hallway with doors lost 0.5 m at each stretch between door frames).
+// end more finely sampled since, that sighting. A pose the motion model carried (§II.E) stands
+// still along the hallway while the sensor moves on, and every group placed from it keeps that
+// lag on the map (in a hallway with doors, half a metre at each stretch between door frames).
 // Only where the earlier such sightings of that end put it (ShowsEnd, §II.C: a wall end stands
 // still): an end where the sensor's range ends creeps along with the sensor, less than kEndStill
-// an iteration, so the sighting before agrees with it (a group on loop_other_sensor was put
-// 1.7 m along its hallway).
+// an iteration, so the sighting before agrees with it, and a group placed from it goes metres
+// along its hallway.
 // The position is the mean over those ends (the heading the latest one's): one end seen metres
-// away is centimetres off, and which end it was changed with the basis chosen afresh at every
-// build (a new group's side walls moved 2.5 cm across the room from one iteration to the next).
+// away is centimetres off, and which end it is changes with the basis chosen afresh at every
+// build (a new group's walls would move centimetres across the room from one iteration to the
+// next).
 // Else the basis as seen when the group was made, from a pose the walls fixed, unless the view
 // cut its reference end then (a door frame in front hid it: the edge seen was not the wall end
-// the relative map starts from, 0.7 m along the wall on the noisy office) or the fixed poses
-// just before did not see that end still; then the latest member whose reference end was in
-// view so, at about where the sightings of it from fixed poses put it; then the basis's end as
-// the fixed poses have seen it since.
+// the relative map starts from, but decimetres along the wall) or the fixed poses just before
+// did not see that end still; then the latest member whose reference end was in view so, at
+// about where the sightings of it from fixed poses put it; then the basis's end as the fixed
+// poses have seen it since.
 Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOptions& options) {
   const RelativeMap& map = group.relative;
   int64_t latest = -1;
@@ -286,16 +287,16 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
     // Seen more finely since, from a fixed pose, where it stood still: that sighting. The last
     // sample on a wall lies up to a sample's spacing short of its end, and the spacing grows with
     // the square of the range as the rays graze the wall: a side wall's end beside a door, seen
-    // 4.6 m down the hallway with samples 0.21 m apart and 8 cm past it, put a group 10 cm along
-    // the hallway; the walls it placed there, and the pose on the drive back, stayed 10 cm off
-    // (hallway_out_and_back, σ = 1 cm, seed 27).
+    // metres down the hallway with samples decimetres apart, puts a group centimetres along the
+    // hallway, and the walls it places there, and the poses that come back past them, stay as
+    // far off.
     // Only where the sighting then was that coarse (samples further apart than kCoarseSpacing),
     // and the later one at most half as coarse: a pose fixed after the group was made may have
     // been fixed by the group itself, so a sighting from it brings the group back to where it
-    // is, give or take the pose's error. Taken where the samples were 4.5 cm apart then and 2-4
-    // cm later, the finest sightings of a wall's end beside a door as the sensor passed it came
-    // from poses 3-5 cm off along the hallway; the group followed them, the poses the group, and
-    // both ended 7 cm along (hallway_loop_doors, σ = 1 cm, seed 90).
+    // is, give or take the pose's error. Taken where the sighting then was already fine, the
+    // finest sightings of a wall's end beside a door as the sensor passes it come from poses
+    // centimetres off along the hallway; the group follows them, the poses the group, and both
+    // drift along it together.
     double fine_spacing = 0.0;
     const SeenWall& fine = FinestEndSighting(in, group, id, rel.ref, &fine_spacing);
     const double made_spacing = SpacingAt(in, made, rel.ref);
@@ -331,10 +332,10 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
   // and the door jamb it placed 0.12 m along the wall).
   const bool end_moved = basis_rel.ref >= 0 && basis_fixed.valid && basis_fixed.cut[basis_rel.ref];
   // Nor a sighting from a pose the motion model carried (§II.E: while one partial plane is seen,
-  // as when turning in place, the position is not solved): a group made then was placed by the
-  // ends it saw, 2 to 5 cm off, and its prior flipped between them and the fixed poses' as its
-  // basis changed from one build to the next. A door jamb at a corner went 4.6 cm along the
-  // hallway, and with it the hallway's next leg across (noisy doors' worst wall 0.056 m).
+  // as when turning in place, the position is not solved): a group made then is placed by the
+  // ends it saw, centimetres off, and its prior flips between them and the fixed poses' as its
+  // basis changes from one build to the next; a door jamb at a corner moves along the hallway,
+  // and with it the hallway's next leg across.
   const auto from_fixed = [&](const SeenWall& seen) {
     return in.trajectory.fixed.count(seen.iteration) != 0;
   };
@@ -410,10 +411,9 @@ Prior PriorWithMemberLines(const GlobalMapInputs& in, Group& group, const Mapper
   // it, each seen far off at a grazing angle and short by up to a column's spacing. A member seen
   // face-on across that direction but only since the group was made (the hallway's end wall,
   // out of range until then) fixes it better: its line as the fixed poses have seen it, as the
-  // map already draws it while the group knows it by its angle only. Without it the group stood
-  // 5.5 cm short of the end wall, and when the wall became a point of the group's relative map
-  // (its corner with the side wall static) it and the pose went 2 cm back in one iteration
-  // (loop_other_sensor, σ = 1 cm, seed 8, the right leg at iteration 670).
+  // map already draws it while the group knows it by its angle only. Without it the group stands
+  // centimetres short of the end wall, and when the wall becomes a point of the group's relative
+  // map (its corner with the side wall static) the group and the pose jump back in one iteration.
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(spanned);
   if (eig.eigenvalues()(0) >= kOpenInformation) return prior;
   const Vector2d open = eig.eigenvectors().col(0);

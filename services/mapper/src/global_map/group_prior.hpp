@@ -57,13 +57,13 @@ bool CoarselySampled(const GlobalMapInputs& in, const SeenWall& seen, int ref);
 // PriorPlacement, with its members' lines as seen to decide the directions they span. A wall's
 // line is fitted to all its points, while an end is where the sensor's last ray met the wall,
 // short of it by up to the rays' spacing along the wall, which grows as they graze it (§II.C).
-// PriorPlacement's placement comes from one reference end, so across the walls it carried that
+// PriorPlacement's placement comes from one reference end, so across the walls it carries that
 // end's sampling error, or its sighting's heading error times the end's distance from them: a
-// pilaster's group on loop_other_sensor was put 4 cm, then 8 cm, along the hallway, where the
-// pilaster's face, seen square on, put it within 2 mm. The basis's line alone left the other
-// direction to an end: an office's last room, linked to the rooms before by orientation only,
-// moved 8 cm across its outer wall when its basis changed from that wall to the partition
-// beside it, whose end, seen far off, was sampled short.
+// pilaster's group is put centimetres along the hallway from an end, where the pilaster's face,
+// seen square on, puts it within millimetres. The basis's line alone leaves the other direction
+// to an end: a room linked to the rooms before by orientation only moves centimetres across its
+// outer wall when its basis changes from that wall to a partition beside it whose end, seen far
+// off, is sampled short.
 Prior PriorWithMemberLines(const GlobalMapInputs& in, Group& group, const MapperOptions& options);
 
 }  // namespace relplane::mapper

@@ -36,19 +36,18 @@ struct Tie {
 
 // rad^2: how loosely the comparisons of group `g` hold member `id`'s orientation against the
 // rest of the group: the inverse of their information (§II.C, a short piece's bias over its
-// length included). A door jamb's 10 cm face is fitted degrees off and its orientation in two
-// groups' relative maps disagreed by 0.68 degrees; weighed as a wall's, that one tie turned every
-// group after it by 0.4 degrees when a loop's solve took it in, and moved a room's walls 5-9 cm
-// (office, σ = 1 cm, seed 207). A wall's comparisons hold it to a few thousandths of a radian.
+// length included). A door jamb's face, a decimetre wide, is fitted degrees off, and its
+// orientation in two groups' relative maps can disagree by more than half a degree; weighed as
+// a wall's, that one tie turns every group after it when a loop's solve (§II.D) takes it in, and
+// moves the walls of whole rooms by centimetres. A wall's comparisons hold it to a few
+// thousandths of a radian.
 //
 // The basis is the group's frame (RefineOrientations holds it): its orientation there is off
-// only by its own fit's bias (PieceBlur) while the group was seen, whatever its partners'. The
-// first group of an office loop held the first room's wall x = 3, its basis, and a jamb's 15 cm
-// face: weighed by that one comparison, the anchor's tie to the next group was as loose as a
-// jamb's, the loop's closing solve put its turn there, every later group turned about the first
-// door, and a wall the chain had 3 cm off went to 5 cm (office_other_sensor, σ = 1 cm, seed 115).
-// Where the basis is a jamb, its own bias keeps the tie loose: held as exact, the first group's
-// jamb frame turned the next group by 0.1 degrees (seed 36: a wall 4.8 -> 6.7 cm off).
+// only by its own fit's bias (PieceBlur) while the group was seen, whatever its partners'. A
+// group holding a long wall, its basis, and a jamb's face only: weighed by that one comparison,
+// the anchor's tie to the next group is as loose as a jamb's, a loop's closing solve puts its
+// turn there, and every later group turns about it. Where the basis is a jamb, its own bias
+// keeps the tie loose: held as exact, a jamb's frame turns the next group by its fit's error.
 double OrientationSpread(const GlobalMapInputs& in, const Grouping& grouping, int64_t g,
                          int64_t id) {
   const Group& group = grouping.groups[static_cast<size_t>(g)];
@@ -72,10 +71,10 @@ double OrientationSpread(const GlobalMapInputs& in, const Grouping& grouping, in
 
 // §II.D as in localisation: walls within ~11 degrees of parallel leave the direction along them
 // open. Where every line two groups share is so, each line residual is taken along the lines'
-// common normal: along its own, the slight angle between two walls turned a millimetre
+// common normal: along its own, the slight angle between two walls turns a millimetre
 // disagreement across them into metres along the hallway (a 0.2 degree angle between two
-// hallway walls made one group's along-wall position "observed" 290 times more weakly than
-// across, and the solve slid a whole leg of a hallway loop by a door spacing, 2.8 m).
+// hallway walls leaves one group's along-wall position "observed" some 300 times more weakly
+// than across, and the solve can slide a whole leg of a hallway loop by metres).
 void OpenLines(std::vector<Tie>* ties) {
   std::map<std::pair<int, int>, Eigen::Matrix2d> information;
   for (const Tie& t : *ties) {
@@ -99,11 +98,11 @@ void OpenLines(std::vector<Tie>* ties) {
 // A line residual is taken across the wall between the point each group's relative map has on
 // it, and those may lie metres apart along the wall: where a group places a member by its line
 // alone, its point is wherever the comparison chain put the line's foot. An error in the
-// member's orientation turns the residual by that distance times the error. A door jamb's 10 cm
-// face, the basis of one group and held by another's comparisons only as a line, had its point
-// there 5 m along from the jamb; its orientation, 1.06 degrees off in the first group, made the
-// two groups disagree by 9 cm across it, and a loop's closing solve took that in and moved a
-// row of rooms 4-6 cm (office, σ = 1 cm, seed 92). Measured at the placements the solve starts
+// member's orientation turns the residual by that distance times the error. A door jamb's face,
+// the basis of one group and held by another's comparisons only as a line, can have its point
+// there metres along from the jamb; its orientation a degree off then makes the two groups
+// disagree across it by centimetres (5 m at 1 degree: 9 cm), and a loop's closing solve takes
+// that in and moves the walls placed after it. Measured at the placements the solve starts
 // from: the distance changes by millimetres during a solve.
 void LeverVariance(const std::vector<geometry::Pose2>& x, std::vector<Tie>* ties) {
   for (Tie& t : *ties) {
@@ -138,13 +137,13 @@ std::vector<Tie> CollectTies(const GlobalMapInputs& in, const Grouping& grouping
 
 // What hard chaining (§II.D) measured of a group from the one before where their ties leave it
 // open. A group that shares no wall end with the one before (turning in place at a corner, the
-// walls before the turn gone from view before the next ones came in) was chained on from the
-// pose, which the motion model held still (§II.E); the ties know nothing of that direction, and
-// only the weak prior held it: a loop's error went all into those directions at the corners,
-// and each leg kept the drift it had made along it (20 m x 12 m loop at 1 cm: after the loop
-// closed, the far end wall of the first leg stayed 4 cm short). Where the ties observe a
-// direction the chain only repeats them, and is left out. Not for a group a loop placed from
-// older groups (it has loop evidence): its chain does not run from the group before.
+// walls before the turn gone from view before the next ones came in) is chained on from the
+// pose, which the motion model holds still (§II.E); the ties know nothing of that direction, and
+// with only the weak prior to hold it a loop's error goes all into those directions at corners,
+// and each leg keeps the drift it made along it (after the loop closes, the far end wall of a
+// leg stays short by that drift). Where the ties observe a direction the chain only repeats
+// them, and is left out. Not for a group a loop placed from older groups (it has loop
+// evidence): its chain does not run from the group before.
 struct ChainPrior {
   std::vector<Vector2d> open;  // world directions of the position the ties leave open
   bool yaw = false;            // no tie turns the two groups
@@ -244,9 +243,9 @@ Normal Linearise(const std::vector<Tie>& ties, const std::vector<const PoseTie*>
     // Each placement is as good as the static pairings that chained it to its group's basis
     // (§II.C: their spread over the common interval). A wall end seen at a grazing angle lies
     // where the sensor's rays last hit it, centimetres short of the end and jumping as the
-    // sensor moves: weighed like any other tie, its few centimetres turned whole groups by
-    // 0.1-0.3 degrees (a noise-free hallway loop, whose ties agreed within 0.04 degrees), since
-    // a turn moves a point metres away from the group's frame at little cost in orientation.
+    // sensor moves: weighed like any other tie, its few centimetres turn whole groups by tenths
+    // of a degree where the ties otherwise agree within hundredths, since a turn moves a point
+    // metres away from the group's frame at little cost in orientation.
     const double wp = 1.0 / (base + t.a->variance + t.b->variance);
     const double wl = 1.0 / (1.0 / wp + t.lever_variance);
     const double alpha = pi.yaw + t.a->alpha;
@@ -372,8 +371,8 @@ PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMa
   // it was, not on where the last solve left the group: that placement already holds the ties,
   // so a prior centred on it counted them again at every solve, and each solve moved a direction
   // the ties hardly observe a little further towards where the ties alone put it, noise and all
-  // (three laps of a hallway loop: one group 0.29 m along its hallway after 32 solves, 1-2 cm
-  // each; 3 walls doubled and a wall 0.27 m off). The solve still starts from the placements.
+  // (over laps of a loop, a centimetre or two a solve adds up to decimetres, and walls are
+  // mapped twice). The solve still starts from the placements.
   std::vector<geometry::Pose2> x(n), x0(n);
   for (int k = 0; k < n; ++k) {
     Group& group = grouping.groups[k];
@@ -392,8 +391,8 @@ PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMa
   result.cost_before = eq.cost;
   // Levenberg-Marquardt: a step that does not lower the cost is refused and the next one damped
   // harder. Plain Gauss-Newton overshot: through the robust kernel and the groups the ties
-  // leave nearly free, its first step raised the cost several times over (a hallway loop's
-  // consistent map, 52 -> 224), and the iterations ended in another minimum metres away.
+  // leave nearly free, its first step can raise the cost several times over, even on a
+  // consistent map, and the iterations then end in another minimum metres away.
   double damping = options.initial_damping;
   for (int iter = 0; iter < options.max_iterations; ++iter) {
     h.setFromTriplets(eq.h.begin(), eq.h.end());

@@ -26,9 +26,9 @@ bool PairThrough(const Comparison& c, const RltPlane& a, int i, double max_std, 
     for (int jj = 0; jj < 2; ++jj) {
       // A pairing whose static sub-intervals disagree by more than one may spread is no static
       // pairing over the whole interval (§II.C): the two edges did not keep one relative place.
-      // Taken all the same where nothing better linked the two walls, one 13 cm wide put a
-      // pilaster's corner 9 cm back along the hallway, the pose with it, for the whole lap
-      // (loop_other_sensor, σ = 1 cm, seed 24).
+      // Taken all the same where nothing better links the two walls, its mean is neither of
+      // the places the edge was seen at (a pilaster's corner seen at two places along the
+      // hallway), and the member and the pose with it stay there for the whole lap.
       if (s.PairStd(ii, jj) > max_std) continue;
       // Quality of a pairing: its iterations, discounted by its spread over the whole interval.
       const double spread = s.PairStd(ii, jj) / kSpreadScale;
@@ -83,10 +83,10 @@ bool PlaceLine(const Placement& p, int64_t from, int64_t to, const RelativeMapIn
   // A parallel line's offset is the same from either edge, but its steadiness is not: each
   // sample measures it along the member's fitted normal, from where the edge is, and a short
   // face's fit turning a degree moves it centimetres at an edge metres away. A door recess's
-  // back face, 3.3 m along from the end wall's reference corner, was unsteady from there and
-  // steady within 0.5 mm from the wall's other edge; it went unplaced by its parallel wall and
-  // was placed through a crossing wall's line from 10 samples, 5.4 cm off
-  // (hallway_out_and_back, σ = 1 cm, seed 181).
+  // back face metres along from the end wall's reference corner can be unsteady from there and
+  // steady from the wall's other edge; judged from the reference edge alone it goes unplaced by
+  // its parallel wall and is placed through a crossing wall's line from a few samples instead,
+  // centimetres off.
   if (!ok && p.known == Known::kPoint && parallel) ok = s.Line(1 - p.ref, &offset);
   if (!ok && p.known == Known::kLine && parallel) ok = s.Line(0, &offset) || s.Line(1, &offset);
   if (!ok) return false;
@@ -120,11 +120,11 @@ bool PlaceAngle(const Placement& p, int64_t from, int64_t to, const RelativeMapI
 // Records the links used in `order` when given. A parallel member's line comes first: their
 // offset is the difference of two fitted offsets, whereas a crossing member's line is measured
 // from its edge, where that edge is seen. A corner's end is seen within a column spacing either
-// side of the corner, 1-2 cm 2.5 m away, from frame to frame (the segmenter's wall-end estimate);
-// taken from the first member by id, a crossing wall, a room's far wall came out 3.7 mm off
-// within ten frames while the wall parallel to it across the door was in the same group, and
-// the pose and every wall after it followed (noise-free office: ATE 7 mm, under 0.5 mm from the
-// parallel wall). So: every line a parallel member gives, then one crossing line, and again.
+// side of the corner from frame to frame (the segmenter's wall-end estimate), centimetres at a
+// few metres; a line taken from a crossing wall is off by that, whereas a wall parallel to it
+// in the same group gives it within a fraction of a millimetre, and the pose and every wall
+// placed after it follow the line. So: every line a parallel member gives, then one crossing
+// line, and again.
 void PlaceRest(const Group& group, const RelativeMapInputs& in, RelativeMap* map,
                ChainOrder* order) {
   auto place_lines = [&](bool parallel_only) {
@@ -259,11 +259,11 @@ RelativeMap GrowFromBest(const Group& group, const RelativeMapInputs& in,
 
 // §II.D relative map: each member's orientation from all its comparisons with the others,
 // weighted by their information, rather than along the one chain that placed it: a chain through
-// a short piece beside a door (fitted 1-6 degrees off as it shrinks to the jamb) turned the walls
-// behind it by 1.2 degrees, while the piece on the door's other side is off the other way. The
+// a short piece beside a door (fitted degrees off as it shrinks to the jamb) turns the walls
+// behind it by about a degree, while the piece on the door's other side is off the other way. The
 // points stay where the chain put them: a link's offsets are in the frame of the member it starts
 // from as that member was fitted then (placing them again along the chain with these
-// orientations moved no recording's ATE by more than 2 mm).
+// orientations was tried and changed next to nothing).
 void RefineOrientations(const RelativeMapInputs& in, RelativeMap* map) {
   // Least squares on the angles' corrections from the chain's values (within a few degrees of
   // the solution, so linear), the basis held: unknown k is member ids[k], the basis is last.
@@ -310,8 +310,7 @@ void RefineOrientations(const RelativeMapInputs& in, RelativeMap* map) {
 // weights are often within a few per cent of each other while what they say differs by
 // centimetres: a short face's fit is turned by the neighbour's points at its creases, and what
 // a pairing from it says is off by that turn times the lever. Their weighted mean spreads what any
-// one of them is off (over seeds 1-72 of the six scenarios at sigma = 1 cm, 404 → 413 of 432 runs
-// met issue #4's targets). A pairing's weight is the chain's: its samples over (1 + (its spread /
+// one of them is off. A pairing's weight is the chain's: its samples over (1 + (its spread /
 // 5 mm)^2), the information of its mean with a 5 mm floor per sample; through a wall's length
 // (seen whole) half, as in the chain. The orientations are held at RefineOrientations' values:
 // the offsets stay linear in the points.
@@ -414,10 +413,9 @@ void RefinePoints(const RelativeMapInputs& in, double max_std, RelativeMap* map)
 // The members after the point links: by line or orientation (PlaceRest), every orientation from
 // all the comparisons, the points from all the static pairings. A line is placed from a placed
 // member's point (a crossing wall's from its edge), so those members are placed again from the
-// points as solved, and the orientations refined with them: left where they were placed from the
-// chain's points, over seeds 1-72 of the six scenarios at sigma = 1 cm 413 of 432 runs met the
-// targets, ATE sum 6.251 m, against 415 and 5.980 m (solving the points before PlaceRest, with
-// the chain's orientations: 409, 6.396 m).
+// points as solved, and the orientations refined with them: a line left where the chain's point
+// put it keeps that point's error. The points are solved once the orientations are refined
+// (solved first, before PlaceRest on the chain's orientations, they were worse).
 void PlaceTheRest(const Group& group, const RelativeMapInputs& in, double max_std, RelativeMap* map,
                   ChainOrder* order) {
   PlaceRest(group, in, map, order);
@@ -444,10 +442,11 @@ RelativeMap Choose(const Group& group, const RelativeMapInputs& in, double max_s
   // reaches its own set only, and the others are placed by lines. §II.D places a group through
   // the planes an earlier group placed, so the basis is in a set holding one whose static end
   // is on the global map, when there is such a set. By pairing evidence alone, whichever set it
-  // was in, a two-wall corner set took the basis over (43 iterations against 42) and left a
-  // group of six walls placed along the hallway from its prior alone (0.2 m off, and the whole
-  // loop after it). The other members' chains are grown only when the best one's does not link
-  // (growing every member's chain at every build tripled the time per iteration on a large map).
+  // is in, a small set (a two-wall corner) can take the basis over by an iteration's evidence and
+  // leave the rest of the group placed along the hallway from its prior alone, and the rest of
+  // the loop after it. The other members' chains are grown only when the best one's does not
+  // link (growing every member's chain at every build costs several times the time per
+  // iteration on a large map).
   RelativeMap map = GrowFromBest(group, in, {}, max_std, order);
   if (!LinksToMap(map, in, group.id)) {
     std::set<int64_t> linked;  // members whose chain reaches a static end on the global map

@@ -23,18 +23,17 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const P
     if (taken.count(id) || placed.known == Known::kAngle) continue;
     const double dalpha = std::abs(geometry::WrapAngle(placed.alpha - alpha));
     if (dalpha > options.max_angle) continue;
-    // A wall known by its line only has no mapped end to hold the overlap test to: the sighting
-    // must lie along it, to within a loop's heading error and its own fit's blur (a short
-    // piece's). A piece 1 m long across a door recess's corner, fitted 8 degrees off, went to
-    // the line of the recess's back wall (then known from a sliver 0.14 m away), and that wall
-    // was mapped along the hallway, 13 cm off (hallway_loop_doors, σ = 1 cm, seed 11).
+    // A wall known by its line only has no mapped end to hold the overlap test to (§II.A): the
+    // sighting must lie along it, to within a loop's heading error and its own fit's blur (a short
+    // piece's). Otherwise a short piece across a door recess's corner, fitted several degrees off,
+    // can take the line of the recess's back wall (known from a sliver beside it), and that wall
+    // is then mapped along the hallway from the piece.
     if (placed.known == Known::kLine && dalpha > options.line_max_angle + PieceBlur(obs)) continue;
     // And only to close a loop, once the group that placed it is frozen (§II.F: its sightings
-    // dropped). Sooner, the new sightings join the old ones in its comparisons: a recess's back
-    // wall, seen as a sliver from the first leg, took a sighting from the corner 30 iterations
-    // later, its static end was then found 5 cm short, and the pose along the next leg followed
-    // it (hallway_out_and_back, σ = 1 cm, seed 119: ATE 0.016 → 0.029 m). As a new rltplane,
-    // the end was found within 4 mm.
+    // dropped). Sooner, the new sightings join the old ones in its comparisons (§II.C): a
+    // recess's back wall seen as a sliver from one leg and again from the corner a little later
+    // has its static end found short, and the pose along the next leg follows that end. As a new
+    // rltplane, its comparisons find the end from the new sightings alone.
     if (placed.known == Known::kLine) {
       const auto by = world.placed_by.find(id);
       if (by == world.placed_by.end() || by->second < 0 ||
@@ -55,9 +54,8 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const P
       // A wall known by its line only is drawn as last seen, from the pose then: often a sliver
       // beside a door the sensor walked through. Its first sighting, from the pose then, shows
       // how far it reached. Without it the far part of a room's first wall, seen again at the
-      // end of a loop through the office, matched nothing: it became a new wall placed from the
-      // loop's drifted pose (4.9 cm off), and the loop never closed (office_other_sensor,
-      // σ = 1 cm, seeds 110 and 132).
+      // end of a loop, matches nothing: it becomes a new wall placed from the loop's drifted
+      // pose, and the loop never closes (§II.A, closing the loop).
       if (placed.known == Known::kLine && plane->first_seen.valid) {
         for (const Eigen::Vector2d& e : plane->first_seen.edge) {
           const double s = t.dot(e - lo);
@@ -71,10 +69,9 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const P
       // was mapped: the wall may go on behind it (a door recess's back wall, seen past the near
       // jamb on the way out and past the far jamb on the way back). A bare line's extent is
       // what its sightings reached, widened by the margin only: the first sighting may already
-      // run on past the wall. From the start of office_other_sensor (σ = 1 cm, seed 115) it
-      // crossed a door to the next corner (the segmenter joins the pieces either side through
-      // the lintel), and widened by the open margin it took a sighting of the next room's wall
-      // on that line at the end of the loop.
+      // run on past the wall, across a door to the next corner (the segmenter joins the pieces
+      // either side through the lintel), and widened by the open margin as well it would take a
+      // sighting of the next room's wall on that line.
       bool known[2] = {true, true};
       if (placed.known == Known::kPoint) {
         known[1 - placed.ref] = placed.has_other || plane->FullLengthKnown();
@@ -88,9 +85,8 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const P
     const double score = (1.0 - dalpha / options.max_angle) + (1.0 - dist / options.max_distance);
     // A wall with a mapped end wins over one known by its line only, whatever their scores: one
     // surface is often both, a recess's back wall first seen as a sliver (its line only) and
-    // mapped again later from a static end. On the way back two sightings of it went to the
-    // sliver; the back wall was then mapped a second time, and the first drawn 2 m long, past
-    // the recess (hallway_loop_doors, σ = 1 cm, seed 37).
+    // mapped again later from a static end. Were the sliver to take its sightings on the way
+    // back, the back wall would be mapped a second time and the first drawn on past the recess.
     const bool placed_end = placed.known == Known::kPoint;
     if (best_id < 0 || placed_end > best_placed || (placed_end == best_placed && score > best)) {
       best = score, best_placed = placed_end, best_id = id;

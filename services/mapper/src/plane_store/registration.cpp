@@ -21,10 +21,9 @@ double Overlap(double a0, double a1, double b0, double b1) {
 // overlapping it in height? Judged by the distance to the wall's line at the piece's middle,
 // not the offsets d: a piece a few degrees off has its d far from the wall's when it lies far
 // from the foot of the sensor's normal. Nor at its ends: a fit is known best at its middle, and
-// its ends are off the line by its orientation error over half its length (1.2-1.7 m pieces of
-// the office's partition reported beside the whole wall, 3.5-7 degrees off, had an end 5-9 cm
-// off the wall's line but their middles within 1 cm; they were taken for a second plane and
-// turned the next room's walls by 0.23 degrees, §II.A).
+// its ends are off the line by its orientation error over half its length (a 1.5 m piece 5
+// degrees off has an end 6 cm off the wall's line and its middle on it). Taken for a second
+// plane, such a piece turns the walls placed from it (§II.A).
 bool OnLineOf(const Observation& piece, const Observation& wall,
               const RegistrationOptions& options) {
   const double angle = std::acos(std::clamp(piece.normal.dot(wall.normal), -1.0, 1.0));
@@ -35,17 +34,17 @@ bool OnLineOf(const Observation& piece, const Observation& wall,
 }
 
 // Does `piece` lie along `wall` (both seen in the same iteration), the latter fitted to more
-// points? Of two reports of one surface the one with the wider support is the better fit (the
-// jamb face reported twice, 0.1 m long each, 3 and 12 degrees off). On the wall's line, and
+// points? Of two reports of one surface the one with the wider support is the better fit (a
+// short jamb face reported twice, each piece a few degrees off). On the wall's line, and
 // either overlapping it along the wall as the bounding box test of §II.A asks of a match, or
 // going on past its end only where the view cuts it:
-// - a recess's 0.4 m side wall was reported as two fits crossing at its middle, 2 and 4
-//   degrees off, the lesser one reaching 0.25 m past the wall's end (points of the corner
-//   beside it); kept, it became a second rltplane, took the wall's later sightings and was
-//   mapped as its duplicate (loop_other_sensor at σ = 1 cm);
+// - a recess's short side wall can be reported as two fits crossing at its middle, a few
+//   degrees apart, the lesser one reaching past the wall's end (points of the corner beside
+//   it); kept, it becomes a second rltplane, takes the wall's later sightings and is mapped as
+//   its duplicate;
 // - the segmenter splits the nearest columns of a wall seen at a glancing angle off as a strip
-//   a few centimetres long, 3-12 degrees off, beside the wall (hallway_out_and_back at
-//   σ = 1 cm, mapped as the wall's duplicate).
+//   a few centimetres long, several degrees off, beside the wall: kept, it is mapped as the
+//   wall's duplicate.
 // A collinear wall past a corner or a door does not touch it; a piece only touching it past a
 // real end (a jamb's corner) is kept: merged, its fit turned the wall.
 bool LiesAlong(const Observation& piece, const Observation& wall,
@@ -110,18 +109,16 @@ using Candidate = std::tuple<double, size_t, int64_t>;
 // map does not place, another, mapped, rltplane of that surface with more sightings that it
 // matched too and no plane took: the wall's older rltplane. The segmenter reports a wall in two
 // pieces beside a door in one frame and as one across it in the next; the whole matches the
-// rltplanes of both, and the younger, a piece's, scored a hair higher and took it. The wall's own
-// rltplane (201 sightings) got nothing, frame after frame, while the sensor turned on the spot with
-// that wall the one long mapped wall in view: the heading was left to a 0.15 m jamb and went 1.2
-// degrees off for the rest of the run (office_other_sensor, σ = 1 cm, seed 130; 6 of that
-// scenario's 7 misses over seeds 73-144 were this). Both rltplanes take the sighting: the younger
-// as before, as the groups were built with it (handed to the older alone, the noise-free office
-// grouped otherwise and placed a group from a room corner's end seen 5 m off, 2.5 cm short: ATE
-// 0.017 m, issue 4's target 1 cm), the older to stay in view and place the pose. Not a sighting
-// with an end in view: fed to the older too, that end changed the groups the same way (the
-// noise-free office again 0.017 m); a line only adds no end to either. Nor where the one that took
-// it is mapped: the pose has the wall then, and the sighting fed to two mapped rltplanes of one
-// surface moved a wall 0.7 cm (office, σ = 1 cm, seed 115: 5.2 cm off).
+// rltplanes of both, and the younger, a piece's, may score a hair higher and take it. The wall's
+// own rltplane then gets nothing, frame after frame; while the sensor turns on the spot with that
+// wall the one long mapped wall in view, the heading is left to short pieces such as a jamb and
+// stays off for the rest of the run (§II.D: the pose comes from the mapped walls in view). Both
+// rltplanes take the sighting: the younger as before, as the groups were built with it (handed
+// to the older alone, the groups change, and a group may be placed from a far corner's end seen
+// short), the older to stay in view and place the pose. Not a sighting with an end in view: fed
+// to the older too, that end changes the groups the same way; a line only adds no end to either.
+// Nor where the one that took it is mapped: the pose has the wall then, and a sighting fed to two
+// mapped rltplanes of one surface moves the wall.
 std::vector<int64_t> AlsoSeenAs(const std::vector<Observation>& observations,
                                 const std::vector<int64_t>& match,
                                 const std::vector<Candidate>& candidates,
@@ -232,22 +229,21 @@ std::vector<int64_t> RegisterObservations(const std::vector<Observation>& observ
     } else if (OnLineOf(observations[k], observations[taken->second], options)) {
       // A rltplane it matches took another piece of the same surface (the segmenter split
       // the wall): any lesser match is another surface that passed the tests, such as the
-      // back of a door recess 0.3 m behind. Registered there, the pose went 0.3 m across the
-      // hallway for 3 s (hallway_loop_doors, σ = 1 cm). It is left to backtracking (§II.A
-      // end) or a new rltplane, but for the one case below.
+      // back of a door recess within the offset bound behind it. Registered there, it pulls the
+      // pose across the hallway by the recess's depth. It is left to backtracking (§II.A end)
+      // or a new rltplane, but for the one case below.
       piece_of[k] = id;
       settled[k] = true;
     }
   }
   // Such a piece takes another rltplane of the taken one's surface that no plane took, if that
   // one is the older (more sightings). The segmenter reports a wall in two pieces beside a door
-  // or as one across it from one frame to the next, and the pieces and the whole went to two
-  // rltplanes. Left out, the piece became a third and the wall's older rltplane was lost: only
-  // the jambs of the door behind then placed the pose along the room (office_other_sensor,
-  // σ = 1 cm, seed 41, frames 474-481). Not the younger: a duplicate is left to time out
-  // ungrouped (§II.B), and fed, one was grouped and placed turned 0.46 degrees by a door's jambs
-  // and the heading with it (seed 59: ATE 0.011 -> 0.043 m). Only after every other plane has
-  // its match, so that no plane loses its own rltplane to a piece.
+  // or as one across it from one frame to the next, and the pieces and the whole go to two
+  // rltplanes. Left out, the piece becomes a third and the wall's older rltplane is lost: only
+  // the jambs of the door behind then place the pose along the room. Not the younger: a
+  // duplicate is left to time out ungrouped (§II.B); fed, it can be grouped and placed turned by
+  // a door's jambs, and the heading with it. Only after every other plane has its match, so that
+  // no plane loses its own rltplane to a piece.
   for (const auto& [score, k, id] : candidates) {
     if (piece_of[k] < 0 || match[k] >= 0 || id == piece_of[k] || taken_by.count(id)) continue;
     if (store.planes.at(id).Count() <= store.planes.at(piece_of[k]).Count()) continue;

@@ -29,8 +29,8 @@ double MatchScore(const Observation& latest, const Observation& obs,
 // reported a stretch of one surface twice (a piece at a room corner or beside a door jamb,
 // fitted a few degrees off, beside the whole wall), or split off its part nearest the view's
 // edge. Both match the same rltplane (§II.A), which stores one plane per iteration (Fig. 1), so
-// the lesser one became a new rltplane and was mapped as the wall's duplicate. The kept plane
-// is extended over the dropped one's reach at the view's edge.
+// the lesser one would become a new rltplane and be mapped as the wall's duplicate. The kept
+// plane is extended over the dropped one's reach at the view's edge.
 void DropRepeatedSightings(
     std::vector<Observation>* observations, const RegistrationOptions& options,
     const std::function<bool(const Eigen::Vector2d&)>& at_view_edge = nullptr);
@@ -45,12 +45,11 @@ void DropRepeatedSightings(
 // With `now` (the sensor's pose this iteration, as far as it is known), a match must also pass
 // the tests with the latest observation moved from the pose it was seen from (`trajectory.poses`)
 // into it. Compared untransformed, a sighting a few iterations old is judged from where the
-// sensor was then: a turn on the spot of 0.12 rad in four iterations moved a pilaster's face
-// 4 m away 0.5 m along the wall, onto the wall 0.3 m behind it, which registered to the face's
-// rltplane (loop_other_sensor at σ = 1 cm, seed 21: mapped 0.3 m off and twice). The moved
-// test only refuses: a plane it alone matches is left to backtracking (§II.A end) or a new
-// rltplane, as untransformed. Letting it match as well registered a door's jambs seen before
-// a turn on into the next room, and the noise-free office's map moved 2 cm.
+// sensor was then: a turn on the spot of 0.12 rad moves a face 4 m away 0.5 m along the wall,
+// onto a wall behind it, which then registers to the face's rltplane and is mapped off its
+// place, and twice. The moved test only refuses: a plane it alone matches is left to
+// backtracking (§II.A end) or a new rltplane, as untransformed. Letting it match as well
+// registers the jambs of a door seen before a turn to planes of the next room.
 // With `also`, for each observation: another rltplane it is added to as well, or -1. That is
 // the wall's older, mapped rltplane when the observation is a line only (both ends cut by the
 // view) and the rltplane it registered to is a younger one the map does not place (AlsoSeenAs

@@ -80,9 +80,9 @@ void RltPlane::Add(Observation obs) {
   }
   // §II.C's maximum size, from lengths seen in two of three sightings in a row: a wall's
   // visible length changes smoothly as the sensor moves, and one sighting longer than both its
-  // neighbours is a segmentation outlier (a 0.3 m door jamb seen once 1.09 m long, a strip of
-  // floor along its foot taken with it, put the wall beside it 0.5 m across the hallway). The
-  // first two sightings stand until a third can confirm them.
+  // neighbours is a segmentation outlier (a door jamb seen once several times its length, a
+  // strip of floor along its foot taken with it, moves the wall placed beside it across the
+  // hallway). The first two sightings stand until a third can confirm them.
   const double confirmed =
       n >= 3 ? Median3(recent_lengths_[n - 3], recent_lengths_[n - 2], recent_lengths_[n - 1])
              : raw_length;
@@ -182,12 +182,11 @@ double RltPlane::Length() const {
   if (full_dirty_) {
     // Median visible length while seen whole: unbiased under noise, unlike the maximum, and
     // robust to the two ways a "whole" sighting misleads. Seen at a grazing angle from a few
-    // metres, a short piece takes in points past its ends: a 0.4 m pilaster face was seen up to
-    // 0.68 m long from 3 m away, the mean of the sightings near the longest made it 0.63 m,
-    // and a door recess placed from its far end 4 m away went 0.25 m along the hallway (an
-    // unseen loop, 70 degree sensor). And an edge cut by the range stays put while the sensor
-    // turns in place, so it passes for a static edge: those sightings are short. Either kind
-    // is a minority of the sightings.
+    // metres, a short piece takes in points past its ends (a face can be seen over half as long
+    // again), so a length near the longest sightings moves whatever is placed from the piece's
+    // far end along the wall. And an edge cut by the range stays put while the sensor turns in
+    // place, so it passes for a static edge: those sightings are short. Either kind is a
+    // minority of the sightings.
     std::vector<double> lengths;
     capped_ = false;
     for (auto r = full_ranges_.rbegin();
@@ -205,10 +204,10 @@ double RltPlane::Length() const {
     }
     // The sightings already dropped (bounded memory) count through their thinned sample, each
     // for the sightings it stands for: without them a plane seen whole again on a second lap
-    // took its length from that lap alone, and a run of sightings short by a tenth of a pilaster
-    // face (the segmenter gave its corner to the wall beside it for 60 iterations) made the face
-    // 9 cm shorter, moved its far end as much in every group that placed it from the near one,
-    // and the pose graph slid a whole leg of the loop 6 cm across its hallway.
+    // takes its length from that lap alone, and a run of short sightings there (the segmenter
+    // giving a pilaster's corner to the wall beside it for a while) shortens the face, moves its
+    // far end as much in every group that places it from the near one, and the pose graph
+    // (§II.D) slides a whole leg of the loop across its hallway.
     std::vector<std::pair<double, double>> weighted;  // length, sightings it stands for
     weighted.reserve(lengths.size() + retired_lengths_.size());
     for (double l : lengths) weighted.emplace_back(l, 1.0);

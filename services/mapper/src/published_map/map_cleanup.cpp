@@ -26,7 +26,7 @@ Vector2d DirectionOf(const MappedPlane& m) {
 
 // The segmenter's fit of a short piece is only known to a few centimetres over its length
 // (PieceBlur: a 0.2 m piece beside a door jamb takes some of the jamb's points, a median 2.4
-// degrees off, one in ten over 5 degrees, on the noisy office; pieces over 1.2 m: 0.05 degrees).
+// degrees off at 1 cm range noise, one in ten over 5 degrees; pieces over 1.2 m: 0.05 degrees).
 bool OnLine(const MappedPlane& line, const MappedPlane& other, const PublishedMapOptions& options) {
   const double length = (End(other, 1) - End(other, 0)).norm();
   const double tolerance = std::max(options.merge_angle, PieceBlurOfLength(length));
@@ -122,8 +122,8 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMap
   // Two walls on the same line, facing the same way, that share most of the shorter one are one
   // surface seen as two rltplanes, the second made where registration and backtracking missed
   // the first (§II.A end): the better-observed one is stretched over the other and keeps the
-  // other's end where that reaches further (1.9 m of a noisy office's side wall was on the map
-  // twice, 2 mm apart). Less than half shared is left alone: two pieces either side of a door
+  // other's end where that reaches further (otherwise a long side wall can be on the map twice,
+  // millimetres apart). Less than half shared is left alone: two pieces either side of a door
   // frame may reach a little past it.
   // Walls stretched in one round are looked at again in the next, for walls they now share most
   // of; the grid holds each under every box it has had (a superset, as Query's is).
