@@ -70,8 +70,36 @@ MapperOptions ReadMapperOptions(Reader& r) {
   cmp.Read("freeze_lag", &o.comparison.freeze_lag);
   cmp.Read("min_motion", &o.comparison.min_motion);
   cmp.Read("uncut_share", &o.comparison.uncut_share);
+  cmp.Read("spread_scale", &o.comparison.spread_scale);
+  cmp.Read("parallel_sin", &o.comparison.parallel_sin);
   if (o.comparison.min_samples < 2) cmp.Fail("min_samples", "must be at least 2");
   Positive(cmp, "static_std", o.comparison.static_std);
+  Positive(cmp, "spread_scale", o.comparison.spread_scale);
+  if (!(o.comparison.parallel_sin > 0.0 && o.comparison.parallel_sin < 1.0)) {
+    cmp.Fail("parallel_sin", "must be between 0 and 1");
+  }
+
+  Reader gm = r.Child("global_map");
+  gm.Read("end_still", &o.global_map.end_still);
+  gm.Read("first_end_agreement", &o.global_map.first_end_agreement);
+  gm.Read("line_agreement", &o.global_map.line_agreement);
+  gm.Read("pose_noise", &o.global_map.pose_noise);
+  gm.Read("spans_open", &o.global_map.spans_open);
+  gm.Read("line_noise", &o.global_map.line_noise);
+  gm.Read("full_line", &o.global_map.full_line);
+  gm.Read("edge_gate", &o.global_map.edge_gate);
+  gm.Read("chained_orientation_prior", &o.global_map.chained_orientation_prior);
+  Positive(gm, "end_still", o.global_map.end_still);
+  Positive(gm, "first_end_agreement", o.global_map.first_end_agreement);
+  Positive(gm, "line_agreement", o.global_map.line_agreement);
+  Positive(gm, "pose_noise", o.global_map.pose_noise);
+  Positive(gm, "line_noise", o.global_map.line_noise);
+  Positive(gm, "full_line", o.global_map.full_line);
+  Positive(gm, "edge_gate", o.global_map.edge_gate);
+  Positive(gm, "chained_orientation_prior", o.global_map.chained_orientation_prior);
+  if (!(o.global_map.spans_open > 0.0 && o.global_map.spans_open <= 1.0)) {
+    gm.Fail("spans_open", "must be in (0, 1]");
+  }
 
   Reader rg = r.Child("regrouping");
   rg.Read("enabled", &o.regrouping.enabled);
@@ -101,10 +129,12 @@ MapperOptions ReadMapperOptions(Reader& r) {
   loc.Read("along_heading", &o.localisation.along_heading);
   loc.Read("max_step", &o.localisation.max_step);
   loc.Read("max_held", &o.localisation.max_held);
+  loc.Read("open_information", &o.localisation.open_information);
   Positive(loc, "prior_weight", o.localisation.prior_weight);
   Positive(loc, "drift_rate", o.localisation.drift_rate);
   Positive(loc, "tracked_prediction", o.localisation.tracked_prediction);
   Positive(loc, "max_step", o.localisation.max_step);
+  Positive(loc, "open_information", o.localisation.open_information);
 
   Reader mo = r.Child("motion");
   mo.Read("turn_rate", &o.motion.turn_rate);

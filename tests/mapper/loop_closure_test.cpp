@@ -51,7 +51,7 @@ const MotionModel kMotion(MotionOptions{}, 0.1);
 
 ClosingLoop Note(const Scene& s, int64_t oldest) {
   return NoteClosing(s.chain, {1.0, 0.0, 0.0}, oldest, s.state.world, s.state.trajectory, kMotion,
-                     99, s.state.trajectory.poses.at(99), GroupingOptions{}.recent_groups);
+                     99, s.state.trajectory.poses.at(99), MapperOptions{});
 }
 
 TEST(LoopClosure, AChainPlacedWellAfterTheReSeenGroupCloses) {

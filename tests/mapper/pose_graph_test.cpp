@@ -84,7 +84,7 @@ TEST(PoseGraph, ALoopClosureIsSpreadOverTheGroups) {
   EXPECT_EQ(GroupLoopEvidence(state.store, state.grouping, 4, 3), 0);
   EXPECT_GT(GroupLoopEvidence(state.store, state.grouping, 5, 3), 0);
   const PoseGraphResult r =
-      OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+      OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   EXPECT_LT(r.cost_after, r.cost_before);
   ExpectTruth(state, 1e-3);
 }
@@ -96,7 +96,7 @@ TEST(PoseGraph, APlaneTakenOutOfAGroupDoesNotBreakTheChain) {
   const int64_t cross = 4;  // the walls of pair (2, 3): ids 4 (cross) and 5 (side)
   state.grouping.groups[3].relative.members.erase(cross);
   state.store.planes.at(cross).groups = {2};
-  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   // Along the row, where no tie holds group 3 to group 2 now, the chain's measure of it (1.06 m
   // on from group 2, 2 cm sigma) weighs in with the loop: within 2 cm of the truth, where the
   // chain alone had it 18 cm off.
@@ -108,7 +108,7 @@ TEST(PoseGraph, AWrongTieDoesNotBendTheLoop) {
   MapperState state = Loop();
   // A plane mis-placed by 0.5 m in one group's relative map (a wrong static pairing).
   state.grouping.groups[4].relative.members.at(6).point.x() += 0.5;
-  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   ExpectTruth(state, 0.02);
 }
 
@@ -145,7 +145,7 @@ TEST(PoseGraph, WallsTyingGroupsFarAlongThemDoNotTurnAnotherGroup) {
   AddTie(&state, 1, 0.0, {0, -1}, 2, 0.004, {-along, -1});
   AddTie(&state, 1, M_PI / 2, {3, 0}, 2, M_PI / 2, {3, along});
   const PoseGraphResult r =
-      OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+      OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   EXPECT_LT(r.cost_after, r.cost_before);
   EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 1e-4);
   EXPECT_NEAR(state.grouping.groups[1].placement.y, 0.0, 1e-4);
@@ -166,7 +166,7 @@ TEST(PoseGraph, NearlyParallelWallsDoNotPlaceAGroupAlongThem) {
   const double angle = 0.2 * M_PI / 180.0;
   AddTie(&state, 0, 0.0, {0, 1}, 1, 0.0, {-1, 1});
   AddTie(&state, 0, angle, {0, -1}, 1, angle, {-1, -1 + 0.003});
-  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   EXPECT_NEAR(state.grouping.groups[1].placement.x, 1.0, 0.01);
   EXPECT_NEAR(state.grouping.groups[1].placement.y, 0.0, 0.003);
   EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 1e-4);
@@ -190,7 +190,7 @@ TEST(PoseGraph, AnEndPlacedThroughASpreadPairingDoesNotTurnTheGroups) {
   spread.variance = 0.03 * 0.03;
   state.grouping.groups[0].relative.members[end] = seen_well;
   state.grouping.groups[1].relative.members[end] = spread;
-  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 0.1 * M_PI / 180.0);
 }
 
@@ -214,11 +214,11 @@ TEST(PoseGraph, SolvingAgainWithNothingNewLeavesTheGroupsWhereTheyAre) {
   spread.variance = 1.0;
   state.grouping.groups[0].relative.members[wall] = seen_well;
   state.grouping.groups[1].relative.members[wall] = spread;
-  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   const geometry::Pose2 first = state.grouping.groups[1].placement;
   EXPECT_LT(first.x, -0.1);  // the end does pull it (the prior is weak, not a hard anchor)
   for (int solve = 0; solve < 10; ++solve)
-    OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+    OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   EXPECT_NEAR(state.grouping.groups[1].placement.x, first.x, 1e-3);
   EXPECT_NEAR(state.grouping.groups[1].placement.y, first.y, 1e-3);
   EXPECT_NEAR(state.grouping.groups[1].placement.yaw, first.yaw, 1e-4);
@@ -243,7 +243,7 @@ TEST(PoseGraph, ALoopClosedByBacktrackingIsSpreadOverTheChain) {
   closing.b = {3.0, 0.0, 0.0};             // ... which is 3 m on from group 0's
   closing.a_basis = closing.b_basis = -1;  // frames with no basis (RelativeMap default)
   state.world.pose_ties.push_back(closing);
-  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   const double x1 = state.grouping.groups[1].placement.x, x2 = state.grouping.groups[2].placement.x;
   const double x3 = state.grouping.groups[3].placement.x;
   EXPECT_LT(x3, 3.02);   // most of the 3 cm taken out
@@ -255,7 +255,7 @@ TEST(PoseGraph, ALoopClosedByBacktrackingIsSpreadOverTheChain) {
   MapperState open = state;
   open.world.pose_ties.clear();
   for (int k = 0; k < 4; ++k) open.grouping.groups[k].placement = {1.01 * k, 0.0, 0.0};
-  OptimiseGroupPlacements(GlobalInputs(open), open.world, PoseGraphOptions{}, open.grouping);
+  OptimiseGroupPlacements(GlobalInputs(open), open.world, MapperOptions{}, open.grouping);
   EXPECT_NEAR(open.grouping.groups[3].placement.x, 3.03, 1e-4);
 }
 
@@ -318,7 +318,7 @@ TEST(PoseGraph, AShortPiecesOrientationDoesNotTurnTheGroups) {
   const double jamb_alpha = -M_PI / 2;
   state.grouping.groups[0].relative.members[jamb] = Line(jamb_alpha, {3, 0.55});
   state.grouping.groups[1].relative.members[jamb] = Line(jamb_alpha + 0.012, {3, 0.55});
-  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 2e-4);
 }
 
@@ -343,7 +343,7 @@ TEST(PoseGraph, AShortPiecesLineFarFromItsPointDoesNotMoveTheGroups) {
   }
   state.grouping.groups[0].relative.members[jamb] = Line(M_PI / 2 + 0.0185, {3, 0.55});
   state.grouping.groups[1].relative.members[jamb] = Line(M_PI / 2, {3, 0.55 - 5.0});
-  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   EXPECT_NEAR(state.grouping.groups[1].placement.x, 0.0, 0.002);
   EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 2e-4);
 }
@@ -388,7 +388,7 @@ TEST(PoseGraph, AGroupsBasisHoldsItsFrameWhateverItsOtherMembers) {
   closing.a = {0.0, 0.0, 0.0};    // the sensor at group 2's origin ...
   closing.b = {0.0, 0.0, 0.004};  // ... turned 4 mrad from it, as group 0 has the pose
   state.world.pose_ties.push_back(closing);
-  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   EXPECT_NEAR(state.grouping.groups[1].placement.yaw, 0.0, 3e-4);
   EXPECT_GT(state.grouping.groups[2].placement.yaw, 0.003);
 }
@@ -415,7 +415,7 @@ TEST(PoseGraph, AJambAsBasisIsALooseLinkAllTheSame) {
     group.relative.members[upper] = Line(M_PI - t, r * Vector2d(0, 1));
     group.relative.members[lower] = Line(-t, r * Vector2d(0, -1));
   }
-  OptimiseGroupPlacements(GlobalInputs(state), state.world, PoseGraphOptions{}, state.grouping);
+  OptimiseGroupPlacements(GlobalInputs(state), state.world, MapperOptions{}, state.grouping);
   EXPECT_NEAR(state.grouping.groups[1].placement.yaw, turn, 3e-4);
 }
 

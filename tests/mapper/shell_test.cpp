@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 
 #include "convert.hpp"
 #include "options_yaml.hpp"
@@ -63,8 +63,8 @@ TEST(Convert, PoseAndMapMessages) {
   EXPECT_DOUBLE_EQ(pose.position[2], 1.0);
   EXPECT_NEAR(pose.orientation[0], std::cos(M_PI / 4), 1e-12);
   MapSnapshot map;
-  map.planes.push_back({7, {0, 1, 0}, -1, {0, 1, 1}, {{0, 1, 0}, {1, 1, 0}, {1, 1, 2}, {0, 1, 2}},
-                        12});
+  map.planes.push_back(
+      {7, {0, 1, 0}, -1, {0, 1, 1}, {{0, 1, 0}, {1, 1, 0}, {1, 1, 2}, {0, 1, 2}}, 12});
   map.groups.push_back({0, 7, {7}});
   const map_t msg = ToMapMessage(map, 100, 3);
   ASSERT_EQ(msg.num_planes, 1);
@@ -77,10 +77,11 @@ TEST(Convert, PoseAndMapMessages) {
 
 TEST(Options, ReadsTheSectionAndRefusesUnknownKeys) {
   const std::string file = ::testing::TempDir() + "mapper_options.yaml";
-  std::ofstream(file) << "name: x\nmapper:\n  start_pose: {x: 1, y: 2, z: 1.0, yaw: 0.5}\n"
-                         "  grouping: {min_observations: 5}\n  published_map: {corner_radius: 0.05}\n"
-                         "  graph: {angle_sigma: 0.004, max_pose_ties: 20}\n"
-                         "  motion: {turn_rate: 0.02}\n";
+  std::ofstream(file)
+      << "name: x\nmapper:\n  start_pose: {x: 1, y: 2, z: 1.0, yaw: 0.5}\n"
+         "  grouping: {min_observations: 5}\n  published_map: {corner_radius: 0.05}\n"
+         "  graph: {angle_sigma: 0.004, max_pose_ties: 20}\n"
+         "  motion: {turn_rate: 0.02}\n";
   const MapperOptions o = LoadMapperOptions(file);
   EXPECT_DOUBLE_EQ(o.published_map.corner_radius, 0.05);
   // mapper.graph.* is settable (it was rejected as an unknown key once).
@@ -101,6 +102,27 @@ TEST(Options, ReadsTheSectionAndRefusesUnknownKeys) {
   EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
   std::ofstream(file) << "mapper:\n  graph: {angel_sigma: 0.1}\n";
   EXPECT_THROW(LoadMapperOptions(file), config::ConfigError);
+  std::remove(file.c_str());
+}
+
+TEST(Options, TheGlobalMapsAndRelativeMapsWeighingIsSettable) {
+  const std::string file = ::testing::TempDir() + "mapper_weighing.yaml";
+  std::ofstream(file) << "mapper:\n  global_map: {edge_gate: 0.3, pose_noise: 0.02}\n"
+                         "  comparison: {spread_scale: 0.01, parallel_sin: 0.1}\n"
+                         "  localisation: {open_information: 0.05}\n";
+  const MapperOptions o = LoadMapperOptions(file);
+  EXPECT_DOUBLE_EQ(o.global_map.edge_gate, 0.3);
+  EXPECT_DOUBLE_EQ(o.global_map.pose_noise, 0.02);
+  EXPECT_DOUBLE_EQ(o.global_map.line_noise, GlobalMapOptions{}.line_noise);
+  EXPECT_DOUBLE_EQ(o.comparison.spread_scale, 0.01);
+  EXPECT_DOUBLE_EQ(o.comparison.parallel_sin, 0.1);
+  EXPECT_DOUBLE_EQ(o.localisation.open_information, 0.05);
+  for (const char* bad : {"global_map: {edge_gate: 0}", "global_map: {spans_open: 1.5}",
+                          "global_map: {edge_gates: 0.5}", "comparison: {parallel_sin: 1}",
+                          "localisation: {open_information: -0.02}"}) {
+    std::ofstream(file) << "mapper:\n  " << bad << "\n";
+    EXPECT_THROW(LoadMapperOptions(file), config::ConfigError) << bad;
+  }
   std::remove(file.c_str());
 }
 

@@ -116,7 +116,8 @@ TEST(Localisation, NearParallelWallsLeaveThePositionAlongThemAtThePreviousOne) {
     b += n * (n.dot(Vector2d(10.0, offsets[k])) + 2.0);
   }
   const Vector2d previous(10.0, 0.0);
-  const Vector2d pos = SolveWithPrior(a, b, previous, 1e-4, 0.5);
+  const Vector2d pos =
+      SolveWithPrior(a, b, previous, 1e-4, 0.5, LocalisationOptions{}.open_information);
   EXPECT_NEAR(pos.x(), 10.0, 1e-3);
   EXPECT_NEAR(pos.y(), 0.0, 0.01);  // 2 m in front of walls at y = 2
 }

@@ -7,6 +7,7 @@
 #include <set>
 #include <vector>
 
+#include "comparison/comparison.hpp"
 #include "global_map/group_prior.hpp"
 #include "global_map/pose_graph.hpp"
 #include "global_map/relative_map.hpp"
@@ -16,33 +17,18 @@
 namespace relplane::mapper {
 namespace {
 
-// rad^-2: the chained orientation as a gauge only, for planes no comparison links to the held
-// ones (a comparison's information is 1e2-1e5; 0.01 or 100 here changed no recording's map).
-constexpr double kChainedOrientationPrior = 1.0;
-
-// Weighing a link's line (Solve): the offset noise of a fitted line where its points are, a
-// short piece's orientation bias over its length (as comparison.cpp's short-piece blur), and
-// how well a line must be known to count fully.
-constexpr double kLineNoise = 0.01;       // m
-constexpr double kShortPieceBias = 0.03;  // m
-constexpr double kFullLine = 0.03;        // m
-// A link's static edge further than this along its wall from where the group's prior puts the
-// group is not taken while another link's edge agrees with the prior (Solve): the prior comes
-// from the pose when the group was made (centimetres off, a decimetre or two after a long
-// motion-model stretch); a wrongly paired edge is a wall's length or a door's width off.
-constexpr double kEdgeGate = 0.5;  // m
-
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
 using geometry::Pose2;
 
 // How much a line placed in a relative map by its orientation (Known::kLine) counts where the
 // wall stands, `lever` metres along it from where its offset was measured: its fit's noise and a
-// short piece's orientation bias over the lever, against kFullLine.
-double LineWeight(double lever, double length) {
-  const double bias = std::atan2(kShortPieceBias, std::max(length, 1e-3));
-  const double sigma = std::hypot(kLineNoise, lever * bias);
-  return std::min(1.0, (kFullLine * kFullLine) / (sigma * sigma));
+// short piece's orientation bias over the lever, against `global_map.full_line`.
+double LineWeight(double lever, double length, const MapperOptions& options) {
+  const double bias = PieceBlurOfLength(length);
+  const double sigma = std::hypot(options.global_map.line_noise, lever * bias);
+  const double full = options.global_map.full_line;
+  return std::min(1.0, (full * full) / (sigma * sigma));
 }
 
 // Does the plane's first sighting show the end `ref` its relative map starts from? Only if the
@@ -52,7 +38,7 @@ double LineWeight(double lever, double length) {
 // from the first sighting's, and the first group, placed from the first sighting's end, would
 // be off by as much (§II.D: the first group is placed from its members' first sightings).
 bool FirstSightingShowsEnd(const Trajectory& trajectory, const RltPlane& plane,
-                           const SeenWall& first, int ref) {
+                           const SeenWall& first, int ref, double agreement) {
   if (ref < 0 || first.cut[ref]) return false;
   const auto& all = plane.Observations();
   const Vector2d t = DirectionOf(first.alpha);
@@ -60,7 +46,7 @@ bool FirstSightingShowsEnd(const Trajectory& trajectory, const RltPlane& plane,
     const Observation& obs = all[i - 1];
     const auto pose = trajectory.poses.find(obs.iteration);
     if (obs.cut[ref] || pose == trajectory.poses.end()) continue;
-    return std::abs(t.dot(pose->second * obs.edge[ref] - first.edge[ref])) <= kFirstEndAgreement;
+    return std::abs(t.dot(pose->second * obs.edge[ref] - first.edge[ref])) <= agreement;
   }
   return true;  // nothing seen since contradicts it
 }
@@ -87,7 +73,8 @@ double SightingOrientationWeight(const RltPlane& plane, int64_t iteration) {
 
 // Least squares for world <- group: rotation from the mean orientation difference, translation
 // from the links' lines (1 equation each) and shared static edges (1 more along the wall).
-Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_weight) {
+Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, const MapperOptions& options) {
+  const double prior_weight = options.localisation.prior_weight;
   const Pose2& prior = prior_in.pose;
   double s = 0.0, c = 0.0;
   for (const Link& l : links) {
@@ -108,10 +95,10 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
   // as much along the line, where the lines nearly agree.
   // Each line is weighed by how well its offset is known where the wall is: its fit's noise, and
   // a short piece's orientation bias (3 cm over its length) carried over the distance from the
-  // edge it was measured from. A line known within kFullLine counts fully, as every line did: a
-  // short pilaster side, fitted a degree off and measured from a recess corner metres along its
-  // line, is centimetres off where it stands, and once it is its group's link it decides the
-  // group's position along a hallway (the static edge that decided it before is only used where
+  // edge it was measured from. A line known within `global_map.full_line` counts fully, as every
+  // line did: a short pilaster side, fitted a degree off and measured from a recess corner metres
+  // along its line, is centimetres off where it stands, and once it is its group's link it decides
+  // the group's position along a hallway (the static edge that decided it before is only used where
   // the lines leave a direction open), moving the group and the pose back by as much.
   auto lines_at = [&](const Vector2d& guess, Matrix2d* a, Vector2d* b) {
     *a = Matrix2d::Zero();
@@ -127,7 +114,7 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
         const Vector2d d = DirectionOf(l.relative.alpha);
         const double lever = d.dot(rot.transpose() * (wall - guess) - l.relative.point);
         at += d * lever;
-        weight = LineWeight(lever, l.plane->Length());
+        weight = LineWeight(lever, l.plane->Length(), options);
       }
       *a += weight * n * n.transpose();
       *b += weight * n * n.dot(l.global.point - rot * at);
@@ -152,25 +139,25 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
       // room's far wall where the two cross metres away, is centimetres off where the jamb
       // stands; counted as fully as the room's side walls, it moves the group, the pose and the
       // room's walls across the room when the group's basis changes. A direction only such
-      // lines span, below kOpenInformation, is left to the ends' placement.
+      // lines span, below `localisation.open_information`, is left to the ends' placement.
       double weight = 1.0;
       if (line.member.known == Known::kLine) {
         const Vector2d d = DirectionOf(line.member.alpha);
         const double lever =
             d.dot(rot.transpose() * (line.seen_point - prior.Translation()) - line.member.point);
-        weight = LineWeight(lever, line.length);
+        weight = LineWeight(lever, line.length, options);
       }
       la += weight * n * n.transpose();
       lb += weight * n * n.dot(line.seen_point - rot * line.member.point);
     }
-    prior_t = SolveWithPrior(la, lb, prior_t, 0.0, 0.0);
+    prior_t = SolveWithPrior(la, lb, prior_t, 0.0, 0.0, options.localisation.open_information);
   }
   // Lines are exact whatever the edges do; static edges are added only where the lines leave
   // a direction open (parallel walls), since an edge taken for static may not quite be. One
   // link's edge each, unless some agree with the prior along their wall and others lie more
-  // than kEdgeGate from it: those are dropped. Where one link's piece in the group's relative
-  // map is paired at the wrong end (a hallway wall whose end next to a recess is taken for its
-  // far end), the two edges of a group's links put it a wall's length apart, and their mean
+  // than `global_map.edge_gate` from it: those are dropped. Where one link's piece in the group's
+  // relative map is paired at the wrong end (a hallway wall whose end next to a recess is taken for
+  // its far end), the two edges of a group's links put it a wall's length apart, and their mean
   // moves the group and the pose half that along the hallway in one iteration.
   Eigen::SelfAdjointEigenSolver<Matrix2d> eig(a);
   if (eig.eigenvalues()(0) < 0.5) {
@@ -192,7 +179,7 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
       }
     }
     auto agrees = [&](const EdgeTie& tie) {
-      return std::abs(tie.along.dot(tie.translation - prior_t)) <= kEdgeGate;
+      return std::abs(tie.along.dot(tie.translation - prior_t)) <= options.global_map.edge_gate;
     };
     const bool any_agrees = std::any_of(ties.begin(), ties.end(), agrees);
     for (const EdgeTie& tie : ties) {
@@ -201,7 +188,8 @@ Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, double prior_
       b += tie.along * tie.along.dot(tie.translation);
     }
   }
-  const Vector2d t = SolveWithPrior(a, b, prior_t, prior_weight, 0.5);
+  const Vector2d t =
+      SolveWithPrior(a, b, prior_t, prior_weight, 0.5, options.localisation.open_information);
   return {t.x(), t.y(), yaw};
 }
 
@@ -372,7 +360,8 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
       link_replaced |=
           by != world.placed_by.end() && static_cast<size_t>(by->second) >= refined_from;
     }
-    if (link_replaced) RefineGlobalOrientations(in, grouping, refined_from, world);
+    if (link_replaced)
+      RefineGlobalOrientations(in, grouping, refined_from, options.global_map, world);
     std::vector<Link> links;
     for (const auto& [id, rel] : group.relative.members) {
       auto it = world.global.find(id);
@@ -409,7 +398,8 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
         // the poses that take them stay off along the hallway for the rest of the run.
         // Its line is taken then, and the prior's ends, each as seen most finely, place it along.
         const int ref = rel.known == Known::kPoint &&
-                                FirstSightingShowsEnd(in.trajectory, *plane, seen, rel.ref) &&
+                                FirstSightingShowsEnd(in.trajectory, *plane, seen, rel.ref,
+                                                      options.global_map.first_end_agreement) &&
                                 !CoarselySampled(in, seen, rel.ref)
                             ? rel.ref
                             : -1;
@@ -417,7 +407,7 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
                          SightingOrientationWeight(*plane, seen.iteration)});
       }
     }
-    group.placement = Solve(links, prior, options.localisation.prior_weight);
+    group.placement = Solve(links, prior, options);
     group.chained = group.placement;
     group.has_chained = true;
     PlaceMembers(in, group, options, world);
@@ -431,7 +421,7 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
   evidence += world.pose_ties_made;
   if (options.graph.enabled && evidence > world.loop_evidence) {
     world.loop_evidence = evidence;
-    const PoseGraphResult solved = OptimiseGroupPlacements(in, world, options.graph, grouping);
+    const PoseGraphResult solved = OptimiseGroupPlacements(in, world, options, grouping);
     ++world.graph_solves;
     if (solved.cost_after < solved.cost_before) {
       world.global.clear();
@@ -440,12 +430,12 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
       refine_from = 0;
     }
   }
-  RefineGlobalOrientations(in, grouping, refine_from, world);
+  RefineGlobalOrientations(in, grouping, refine_from, options.global_map, world);
   world.changed = true;
 }
 
 void RefineGlobalOrientations(const GlobalMapInputs& in, const Grouping& grouping, size_t from,
-                              WorldMap& world) {
+                              const GlobalMapOptions& options, WorldMap& world) {
   // Least squares on the corrections from the chained orientations, as RefineOrientations does
   // within a group, over every comparison between two planes on the global map; the first
   // group's planes are held (§II.D: it is placed from the start pose). Hard chaining (§II.D)
@@ -509,7 +499,7 @@ void RefineGlobalOrientations(const GlobalMapInputs& in, const Grouping& groupin
     if (x >= 0 && y >= 0) a.emplace_back(x, y, -w), a.emplace_back(y, x, -w);
   }
   // A weak prior at the chained value: the gauge of planes no comparison ties to the held ones.
-  for (int k = 0; k < n; ++k) a.emplace_back(k, k, kChainedOrientationPrior);
+  for (int k = 0; k < n; ++k) a.emplace_back(k, k, options.chained_orientation_prior);
   Eigen::SparseMatrix<double> h(n, n);
   h.setFromTriplets(a.begin(), a.end());  // duplicates are summed
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(h);

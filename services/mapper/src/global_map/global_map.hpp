@@ -48,6 +48,6 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
 // Only the planes groups `from`, `from + 1`, ... placed are solved, against the others as they
 // stand: the map grows with the run while what one iteration re-places does not.
 void RefineGlobalOrientations(const GlobalMapInputs& in, const Grouping& grouping, size_t from,
-                              WorldMap& world);
+                              const GlobalMapOptions& options, WorldMap& world);
 
 }  // namespace relplane::mapper

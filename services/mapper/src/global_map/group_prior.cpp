@@ -14,9 +14,6 @@ namespace {
 using Eigen::Vector2d;
 using geometry::Pose2;
 
-// m: an end seen from two fixed poses in a row moves less than this if it is the wall's end.
-constexpr double kEndStill = 0.05;
-
 }  // namespace
 
 Pose2 PoseAt(const GlobalMapInputs& in, int64_t iteration, const MapperOptions& options) {
@@ -58,16 +55,6 @@ SeenWall SeenWhenMade(const GlobalMapInputs& in, Group& group, int64_t id,
 // m: samples this far apart along a wall put its end off by more than the end's own noise
 // (LearnedFrustum::kEdgeNoise, 2 sigma) could.
 constexpr double kCoarseSpacing = 2.0 * LearnedFrustum::kEdgeNoise;
-// m: a sighting's middle this far from the line the others agree on is not the same wall (a
-// mis-association, or a pose the walls fixed wrongly); the pose error from fixed poses is a few
-// centimetres.
-constexpr double kLineAgreement = 0.1;
-// m: the error of a fixed pose across a wall, added to each sighting's own offset error so that
-// the best-fitting sighting does not take all the weight.
-constexpr double kPoseNoise = 0.01;
-// cos 45 deg: a member's normal this near a direction the other members' lines leave open
-// spans it.
-constexpr double kAlongOpen = 0.7071;
 
 }  // namespace
 
@@ -91,8 +78,9 @@ SeenWall LineWhenMade(const GlobalMapInputs& in, Group& group, int64_t id,
     const auto pose = in.trajectory.poses.find(obs.iteration);
     if (pose == in.trajectory.poses.end()) continue;
     const double offset_var = obs.support > 0 ? obs.rms * obs.rms / obs.support : 0.0;
-    sights.push_back({SeenFrom(obs, pose->second), OrientationWeight(obs),
-                      1.0 / (offset_var + kPoseNoise * kPoseNoise)});
+    sights.push_back(
+        {SeenFrom(obs, pose->second), OrientationWeight(obs),
+         1.0 / (offset_var + options.global_map.pose_noise * options.global_map.pose_noise)});
   }
   const auto fuse = [&](const std::vector<bool>& use, SeenWall* out) {
     double s = 0.0, c = 0.0, wsum = 0.0;
@@ -122,7 +110,7 @@ SeenWall LineWhenMade(const GlobalMapInputs& in, Group& group, int64_t id,
     const Vector2d n = NormalOf(fused.alpha);
     for (size_t k = 0; k < sights.size(); ++k) {
       const Vector2d mid = 0.5 * (sights[k].seen.edge[0] + sights[k].seen.edge[1]);
-      use[k] = std::abs(n.dot(mid - fused.edge[0])) <= kLineAgreement;
+      use[k] = std::abs(n.dot(mid - fused.edge[0])) <= options.global_map.line_agreement;
     }
     if (!fuse(use, &fused)) fused = made;
   }
@@ -138,7 +126,8 @@ namespace {
 // in every direction, kept in the group (invalid when there is none). Poses from the group's
 // first iteration on were solved against its own placement, and one the motion model carried
 // (§II.E) stood still along a direction the walls left open while the sensor moved on.
-const SeenWall& SeenFromFixedPose(const GlobalMapInputs& in, Group& group, int64_t id) {
+const SeenWall& SeenFromFixedPose(const GlobalMapInputs& in, Group& group, int64_t id,
+                                  const GlobalMapOptions& o) {
   auto [kept, inserted] = group.seen_fixed.try_emplace(id);
   if (!inserted) return kept->second;
   const RltPlane& plane = *in.store.Plane(id);
@@ -158,7 +147,7 @@ const SeenWall& SeenFromFixedPose(const GlobalMapInputs& in, Group& group, int64
     const Eigen::Vector2d t = DirectionOf(latest.alpha);
     for (int e = 0; e < 2; ++e) {
       latest.cut[e] = latest.cut[e] || seen.cut[e] ||
-                      std::abs(t.dot(latest.edge[e] - seen.edge[e])) > kEndStill;
+                      std::abs(t.dot(latest.edge[e] - seen.edge[e])) > o.end_still;
     }
     break;
   }
@@ -180,8 +169,8 @@ Pose2 PlacementFromSighting(const SeenWall& seen, const Placement& rel) {
 // (§II.C), and an end seen elsewhere was a segmenter outlier (a corner's end seen once 0.4 m
 // past the corner, from a pose the motion model carried round it, put a group and the whole
 // loop after it 0.4 m off).
-bool ShowsEnd(const GlobalMapInputs& in, const RltPlane& plane, const SeenWall& seen, int ref,
-              int64_t before) {
+bool ShowsEnd(const GlobalMapInputs& in, const GlobalMapOptions& o, const RltPlane& plane,
+              const SeenWall& seen, int ref, int64_t before) {
   if (ref < 0 || seen.cut[ref]) return false;
   const auto& all = plane.Observations();
   const Vector2d t = DirectionOf(seen.alpha);
@@ -199,18 +188,19 @@ bool ShowsEnd(const GlobalMapInputs& in, const RltPlane& plane, const SeenWall& 
   std::sort(along.begin(), along.end());
   const size_t n = along.size();
   const double median = n % 2 == 1 ? along[n / 2] : 0.5 * (along[n / 2 - 1] + along[n / 2]);
-  return std::abs(median) <= kFirstEndAgreement;
+  return std::abs(median) <= o.first_end_agreement;
 }
 
 // ShowsEnd for a member of `group`, judged once: the sightings before the group was made do
 // not change.
-bool MemberShowsEnd(const GlobalMapInputs& in, Group& group, int64_t id, const SeenWall& seen,
-                    int ref) {
+bool MemberShowsEnd(const GlobalMapInputs& in, const GlobalMapOptions& o, Group& group, int64_t id,
+                    const SeenWall& seen, int ref) {
   const auto key = std::make_tuple(id, ref, seen.iteration);
   auto it = group.shows_end.find(key);
   if (it == group.shows_end.end()) {
-    it = group.shows_end.emplace(key, ShowsEnd(in, *in.store.Plane(id), seen, ref, group.created))
-             .first;
+    it =
+        group.shows_end.emplace(key, ShowsEnd(in, o, *in.store.Plane(id), seen, ref, group.created))
+            .first;
   }
   return it->second;
 }
@@ -227,8 +217,8 @@ double SpacingAt(const GlobalMapInputs& in, const SeenWall& seen, int ref) {
 // Member `id`'s end `ref` as most finely sampled from a pose the walls fixed, up to now, where it
 // stood still since the sighting from a fixed pose before (§II.C: a wall end stands still), and
 // that sighting's spacing. The observations are scanned once each, as they come.
-const SeenWall& FinestEndSighting(const GlobalMapInputs& in, Group& group, int64_t id, int ref,
-                                  double* spacing) {
+const SeenWall& FinestEndSighting(const GlobalMapInputs& in, const GlobalMapOptions& o,
+                                  Group& group, int64_t id, int ref, double* spacing) {
   Group::FinestEnd& fine = group.finest_end[{id, ref}];
   const RltPlane& plane = *in.store.Plane(id);
   const auto& all = plane.Observations();
@@ -242,7 +232,7 @@ const SeenWall& FinestEndSighting(const GlobalMapInputs& in, Group& group, int64
     const SeenWall before = fine.previous;
     fine.previous = seen;
     if (seen.cut[ref] || !before.valid || before.cut[ref] ||
-        std::abs(DirectionOf(seen.alpha).dot(seen.edge[ref] - before.edge[ref])) > kEndStill) {
+        std::abs(DirectionOf(seen.alpha).dot(seen.edge[ref] - before.edge[ref])) > o.end_still) {
       continue;
     }
     const double s = SpacingAt(in, seen, ref);
@@ -259,19 +249,17 @@ const SeenWall& FinestEndSighting(const GlobalMapInputs& in, Group& group, int64
 // still along the hallway while the sensor moves on, and every group placed from it keeps that
 // lag on the map (in a hallway with doors, half a metre at each stretch between door frames).
 // Only where the earlier such sightings of that end put it (ShowsEnd, §II.C: a wall end stands
-// still): an end where the sensor's range ends creeps along with the sensor, less than kEndStill
-// an iteration, so the sighting before agrees with it, and a group placed from it goes metres
-// along its hallway.
-// The position is the mean over those ends (the heading the latest one's): one end seen metres
-// away is centimetres off, and which end it is changes with the basis chosen afresh at every
-// build (a new group's walls would move centimetres across the room from one iteration to the
-// next).
-// Else the basis as seen when the group was made, from a pose the walls fixed, unless the view
-// cut its reference end then (a door frame in front hid it: the edge seen was not the wall end
-// the relative map starts from, but decimetres along the wall) or the fixed poses just before
-// did not see that end still; then the latest member whose reference end was in view so, at
-// about where the sightings of it from fixed poses put it; then the basis's end as the fixed
-// poses have seen it since.
+// still): an end where the sensor's range ends creeps along with the sensor, less than
+// `global_map.end_still` an iteration, so the sighting before agrees with it, and a group placed
+// from it goes metres along its hallway. The position is the mean over those ends (the heading the
+// latest one's): one end seen metres away is centimetres off, and which end it is changes with the
+// basis chosen afresh at every build (a new group's walls would move centimetres across the room
+// from one iteration to the next). Else the basis as seen when the group was made, from a pose the
+// walls fixed, unless the view cut its reference end then (a door frame in front hid it: the edge
+// seen was not the wall end the relative map starts from, but decimetres along the wall) or the
+// fixed poses just before did not see that end still; then the latest member whose reference end
+// was in view so, at about where the sightings of it from fixed poses put it; then the basis's end
+// as the fixed poses have seen it since.
 Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOptions& options) {
   const RelativeMap& map = group.relative;
   int64_t latest = -1;
@@ -280,8 +268,8 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
   int ends = 0;
   for (const auto& [id, rel] : map.members) {
     if (rel.known != Known::kPoint) continue;
-    const SeenWall& made = SeenFromFixedPose(in, group, id);
-    if (!made.valid || !MemberShowsEnd(in, group, id, made, rel.ref)) {
+    const SeenWall& made = SeenFromFixedPose(in, group, id, options.global_map);
+    if (!made.valid || !MemberShowsEnd(in, options.global_map, group, id, made, rel.ref)) {
       continue;
     }
     // Seen more finely since, from a fixed pose, where it stood still: that sighting. The last
@@ -298,7 +286,8 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
     // centimetres off along the hallway; the group follows them, the poses the group, and both
     // drift along it together.
     double fine_spacing = 0.0;
-    const SeenWall& fine = FinestEndSighting(in, group, id, rel.ref, &fine_spacing);
+    const SeenWall& fine =
+        FinestEndSighting(in, options.global_map, group, id, rel.ref, &fine_spacing);
     const double made_spacing = SpacingAt(in, made, rel.ref);
     const bool finer =
         fine.valid && made_spacing > kCoarseSpacing && fine_spacing <= 0.5 * made_spacing;
@@ -319,7 +308,7 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
   // A basis known by its line only: its line as last seen from a fixed pose before the group
   // was made, for the same reason (turning in place at a corner, the pose the motion model
   // carried across the wall's line was 2 cm off, and so was the wall).
-  const SeenWall& basis_fixed = SeenFromFixedPose(in, group, basis);
+  const SeenWall& basis_fixed = SeenFromFixedPose(in, group, basis, options.global_map);
   if (basis_rel.known == Known::kLine && basis_fixed.valid) {
     return PlacementFromSighting(basis_fixed, basis_rel);
   }
@@ -348,13 +337,13 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
     if (id == basis || rel.known != Known::kPoint) continue;
     const SeenWall seen = SeenWhenMade(in, group, id, options);
     if (seen.iteration <= latest || !from_fixed(seen)) continue;
-    if (!MemberShowsEnd(in, group, id, seen, rel.ref)) continue;
+    if (!MemberShowsEnd(in, options.global_map, group, id, seen, rel.ref)) continue;
     // Nor a member whose end the fixed poses just before did not see still, as for the basis
     // (§II.C: a wall end stands still): a far wall's end at a grazing angle is its last sample,
     // which creeps along with the sensor (a hallway wall's end beside a door, seen 3.8 m away,
     // lay 0.12 m short of its corner and put a door jamb's group, and the hallway after it, 0.13 m
     // along the hallway).
-    const SeenWall& fixed = SeenFromFixedPose(in, group, id);
+    const SeenWall& fixed = SeenFromFixedPose(in, group, id, options.global_map);
     if (fixed.valid && fixed.cut[rel.ref]) continue;
     // Nor one far from where the fixed poses have seen that end since (their median): with none
     // seen before, one sighting is all MemberShowsEnd has, and a partition's edge seen once
@@ -363,7 +352,7 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
     const SeenWall since = EndSeenFromFixedPoses(in.trajectory, *in.store.Plane(id), rel.ref);
     if (since.valid &&
         std::abs(DirectionOf(seen.alpha).dot(since.edge[rel.ref] - seen.edge[rel.ref])) >
-            kFirstEndAgreement) {
+            options.global_map.first_end_agreement) {
       continue;
     }
     latest = seen.iteration;
@@ -396,7 +385,7 @@ Prior PriorWithMemberLines(const GlobalMapInputs& in, Group& group, const Mapper
     // As PriorPlacement takes a line: from a fixed pose before the group was made where there is
     // one (§II.E: the motion model's poses lag along open directions); the basis, which the
     // placement hangs on, as seen when the group was made otherwise.
-    const SeenWall& fixed = SeenFromFixedPose(in, group, id);
+    const SeenWall& fixed = SeenFromFixedPose(in, group, id, options.global_map);
     if (!fixed.valid && id != map.basis) {
       late.push_back(id);
       continue;
@@ -415,11 +404,11 @@ Prior PriorWithMemberLines(const GlobalMapInputs& in, Group& group, const Mapper
   // centimetres short of the end wall, and when the wall becomes a point of the group's relative
   // map (its corner with the side wall static) the group and the pose jump back in one iteration.
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(spanned);
-  if (eig.eigenvalues()(0) >= kOpenInformation) return prior;
+  if (eig.eigenvalues()(0) >= options.localisation.open_information) return prior;
   const Vector2d open = eig.eigenvectors().col(0);
   for (int64_t id : late) {
     const Placement& member = map.members.at(id);
-    if (std::abs(NormalOf(member.alpha).dot(open)) < kAlongOpen) continue;
+    if (std::abs(NormalOf(member.alpha).dot(open)) < options.global_map.spans_open) continue;
     // Not from poses the motion model carried: they stood still along that open direction.
     const SeenWall seen = LineWhenMade(in, group, id, options);
     if (in.trajectory.fixed.count(seen.iteration) == 0) continue;

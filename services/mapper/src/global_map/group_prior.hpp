@@ -16,10 +16,6 @@
 
 namespace relplane::mapper {
 
-// m: the first sighting's end and the latest one agree this well if they are the same end (edge
-// noise and the pose's drift since the start).
-constexpr double kFirstEndAgreement = 0.2;
-
 // One member's line in a group's prior: a point on it as seen around when the group was made,
 // in the world, and the member's place in the relative map.
 struct PriorLine {

@@ -9,7 +9,7 @@ namespace relplane::mapper {
 ClosingLoop NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose2& pose,
                         int64_t oldest, const WorldMap& world, const Trajectory& trajectory,
                         const MotionModel& motion, int64_t previous_iteration,
-                        const geometry::Pose2& previous_pose, int recent_groups) {
+                        const geometry::Pose2& previous_pose, const MapperOptions& options) {
   ClosingLoop loop;
   if (oldest < 0 || chain.empty()) return loop;
   // The pose is the chain's only where every wall it came from was placed by a group well after
@@ -18,7 +18,8 @@ ClosingLoop NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose
   Eigen::Matrix2d information = Eigen::Matrix2d::Zero();
   for (const Sighting& s : chain) {
     auto by = world.placed_by.find(s.plane->Id());
-    if (by == world.placed_by.end() || by->second - oldest <= recent_groups) return loop;
+    if (by == world.placed_by.end() || by->second - oldest <= options.grouping.recent_groups)
+      return loop;
     newest = std::max(newest, by->second);
     if (s.world.known == Known::kAngle) continue;
     const Eigen::Vector2d n = NormalOf(s.world.alpha);
@@ -34,8 +35,9 @@ ClosingLoop NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose
       before != poses.end() && before->first < previous_iteration &&
       motion.Turning(before->second, previous_pose, previous_iteration - before->first);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(information);
-  if (!turning && eig.eigenvalues()(1) < kOpenInformation) return loop;  // both directions open
-  if (!turning && eig.eigenvalues()(0) < kOpenInformation) {
+  if (!turning && eig.eigenvalues()(1) < options.localisation.open_information)
+    return loop;  // both directions open
+  if (!turning && eig.eigenvalues()(0) < options.localisation.open_information) {
     loop.open = true;
     const Eigen::Vector2d u = eig.eigenvectors().col(0);
     loop.open_alpha = std::atan2(u.y(), u.x());

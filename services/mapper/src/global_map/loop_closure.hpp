@@ -28,13 +28,13 @@ struct ClosingLoop {
 
 // The loop closing where walls of group `oldest` were matched again while `chain`, the walls in
 // view registered as usual, put the sensor at `pose`: a closing only where all of `chain` was
-// placed by groups well after `oldest` (`recent_groups`), and the chain's walls fix at least one
-// direction (or the sensor turns on the spot). `previous_pose` is the pose of
+// placed by groups well after `oldest` (`grouping.recent_groups`), and the chain's walls fix at
+// least one direction (or the sensor turns on the spot). `previous_pose` is the pose of
 // `previous_iteration`, the iteration before this one.
 ClosingLoop NoteClosing(const std::vector<Sighting>& chain, const geometry::Pose2& pose,
                         int64_t oldest, const WorldMap& world, const Trajectory& trajectory,
                         const MotionModel& motion, int64_t previous_iteration,
-                        const geometry::Pose2& previous_pose, int recent_groups);
+                        const geometry::Pose2& previous_pose, const MapperOptions& options);
 
 // The PoseTie of `loop` (if it closes), from the pose `estimate` found this iteration, added to
 // world.pose_ties when the loop moved the pose by something (`options`). Returns whether a tie

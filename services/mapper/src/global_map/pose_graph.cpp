@@ -75,7 +75,7 @@ double OrientationSpread(const GlobalMapInputs& in, const Grouping& grouping, in
 // disagreement across them into metres along the hallway (a 0.2 degree angle between two
 // hallway walls leaves one group's along-wall position "observed" some 300 times more weakly
 // than across, and the solve can slide a whole leg of a hallway loop by metres).
-void OpenLines(std::vector<Tie>* ties) {
+void OpenLines(double open_information, std::vector<Tie>* ties) {
   std::map<std::pair<int, int>, Eigen::Matrix2d> information;
   for (const Tie& t : *ties) {
     if (t.a->known == Known::kAngle || t.b->known == Known::kAngle) continue;
@@ -88,7 +88,7 @@ void OpenLines(std::vector<Tie>* ties) {
     auto it = information.find({t.i, t.j});
     if (it == information.end()) continue;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(it->second);
-    if (eig.eigenvalues()(0) >= kOpenInformation) continue;
+    if (eig.eigenvalues()(0) >= open_information) continue;
     Vector2d u = eig.eigenvectors().col(1);
     if (u.dot(NormalOf(t.a->alpha)) < 0.0) u = -u;
     t.line_alpha = std::atan2(u.x(), -u.y());  // NormalOf(line_alpha) == u
@@ -113,7 +113,8 @@ void LeverVariance(const std::vector<geometry::Pose2>& x, std::vector<Tie>* ties
 }
 
 // Ties between consecutive groups (by index) holding the same rltplane with a known placement.
-std::vector<Tie> CollectTies(const GlobalMapInputs& in, const Grouping& grouping) {
+std::vector<Tie> CollectTies(const GlobalMapInputs& in, const Grouping& grouping,
+                             double open_information) {
   std::vector<Tie> ties;
   for (const auto& [id, plane] : in.store.planes) {
     int previous = -1;
@@ -131,7 +132,7 @@ std::vector<Tie> CollectTies(const GlobalMapInputs& in, const Grouping& grouping
       previous = static_cast<int>(g);
     }
   }
-  OpenLines(&ties);
+  OpenLines(open_information, &ties);
   return ties;
 }
 
@@ -150,7 +151,8 @@ struct ChainPrior {
 };
 
 std::vector<ChainPrior> ChainPriors(const Grouping& grouping, const std::vector<Tie>& ties,
-                                    const std::vector<geometry::Pose2>& x) {
+                                    const std::vector<geometry::Pose2>& x,
+                                    double open_information) {
   const int n = static_cast<int>(grouping.groups.size());
   std::vector<ChainPrior> chain(n);
   std::vector<Eigen::Matrix2d> information(n, Eigen::Matrix2d::Zero());
@@ -166,7 +168,7 @@ std::vector<ChainPrior> ChainPriors(const Grouping& grouping, const std::vector<
     if (grouping.groups[k].loop_evidence > 0) continue;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(information[k]);
     for (int e = 0; e < 2; ++e) {
-      if (eig.eigenvalues()(e) < kOpenInformation) {
+      if (eig.eigenvalues()(e) < open_information) {
         chain[k].open.push_back(eig.eigenvectors().col(e));
       }
     }
@@ -360,11 +362,13 @@ int GroupLoopEvidence(const PlaneStore& store, const Grouping& grouping, size_t 
 }
 
 PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMap& world,
-                                        const PoseGraphOptions& options, Grouping& grouping) {
+                                        const MapperOptions& mapper_options, Grouping& grouping) {
+  const PoseGraphOptions& options = mapper_options.graph;
+  const double open_information = mapper_options.localisation.open_information;
   PoseGraphResult result;
   const int n = static_cast<int>(grouping.groups.size());
   if (n < 2) return result;
-  std::vector<Tie> ties = CollectTies(in, grouping);
+  std::vector<Tie> ties = CollectTies(in, grouping, open_information);
   const std::vector<const PoseTie*> pose_ties = CurrentPoseTies(grouping, world);
   result.ties = static_cast<int>(ties.size() + pose_ties.size());
   // The priors are centred on each group's chained placement (§II.D), which a solve leaves as
@@ -386,7 +390,7 @@ PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMa
   LeverVariance(x, &ties);
   Eigen::SparseMatrix<double> h(3 * n, 3 * n);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-  const std::vector<ChainPrior> chain = ChainPriors(grouping, ties, x);
+  const std::vector<ChainPrior> chain = ChainPriors(grouping, ties, x, open_information);
   Normal eq = Linearise(ties, pose_ties, chain, x, x0, options);
   result.cost_before = eq.cost;
   // Levenberg-Marquardt: a step that does not lower the cost is refused and the next one damped

@@ -33,6 +33,6 @@ struct PoseGraphResult {
 // Gauss-Newton over all group placements (world <- group frame), starting from the current
 // ones; group 0 stays where it is (anchored at the start pose, §II.D).
 PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMap& world,
-                                        const PoseGraphOptions& options, Grouping& grouping);
+                                        const MapperOptions& options, Grouping& grouping);
 
 }  // namespace relplane::mapper

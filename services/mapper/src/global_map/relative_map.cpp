@@ -11,14 +11,11 @@ namespace {
 
 using Eigen::Vector2d;
 
-constexpr double kSpreadScale = 0.005;  // m
-constexpr double kParallelSin = 0.17;   // two lines this close in orientation are parallel
-
 Eigen::Matrix2d Rot(double a) { return Eigen::Rotation2Dd(a).toRotationMatrix(); }
 
 // B's edge j seen from A's edge i, also through the other edge of a wall seen whole.
-bool PairThrough(const Comparison& c, const RltPlane& a, int i, double max_std, int* j,
-                 Vector2d* delta, double* weight, double* variance) {
+bool PairThrough(const Comparison& c, const RltPlane& a, int i, const ComparisonOptions& comparison,
+                 int* j, Vector2d* delta, double* weight, double* variance) {
   const DirectedStats& s = c.From(a.Id());
   *weight = 0.0;
   for (int ii = 0; ii < 2; ++ii) {
@@ -29,9 +26,9 @@ bool PairThrough(const Comparison& c, const RltPlane& a, int i, double max_std, 
       // Taken all the same where nothing better links the two walls, its mean is neither of
       // the places the edge was seen at (a pilaster's corner seen at two places along the
       // hallway), and the member and the pose with it stay there for the whole lap.
-      if (s.PairStd(ii, jj) > max_std) continue;
+      if (s.PairStd(ii, jj) > comparison.static_std) continue;
       // Quality of a pairing: its iterations, discounted by its spread over the whole interval.
-      const double spread = s.PairStd(ii, jj) / kSpreadScale;
+      const double spread = s.PairStd(ii, jj) / comparison.spread_scale;
       // Through the other edge only when no direct pairing is as good: the full length adds
       // its own error.
       const double w = s.pair_count[ii][jj] / (1.0 + spread * spread) * (ii == i ? 1.0 : 0.5);
@@ -50,14 +47,14 @@ bool PairThrough(const Comparison& c, const RltPlane& a, int i, double max_std, 
 
 // The point placement of `to` from placed member `from` through their static pairing.
 bool PlacePoint(const Placement& from_placed, int64_t from, int64_t to, const RelativeMapInputs& in,
-                double max_std, Placement* out, double* weight) {
+                const ComparisonOptions& comparison, Placement* out, double* weight) {
   if (from_placed.known != Known::kPoint) return false;
   const Comparison* c = in.comparisons.Find(from, to);
   if (c == nullptr) return false;
   int j = -1;
   Vector2d delta;
   double variance = 0.0;
-  if (!PairThrough(*c, *in.store.Plane(from), from_placed.ref, max_std, &j, &delta, weight,
+  if (!PairThrough(*c, *in.store.Plane(from), from_placed.ref, comparison, &j, &delta, weight,
                    &variance)) {
     return false;
   }
@@ -72,12 +69,12 @@ bool PlacePoint(const Placement& from_placed, int64_t from, int64_t to, const Re
 // The line placement of `to`: its line steady relative to a placed edge (or parallel to a
 // placed line).
 bool PlaceLine(const Placement& p, int64_t from, int64_t to, const RelativeMapInputs& in,
-               Placement* out) {
+               const ComparisonOptions& comparison, Placement* out) {
   const Comparison* c = in.comparisons.Find(from, to);
   if (c == nullptr) return false;
   const DirectedStats& s = c->From(from);
   const double dalpha = c->DeltaAlpha(from);
-  const bool parallel = std::abs(std::sin(dalpha)) < kParallelSin;
+  const bool parallel = std::abs(std::sin(dalpha)) < comparison.parallel_sin;
   double offset = 0.0;
   bool ok = p.known == Known::kPoint && s.Line(p.ref, &offset);
   // A parallel line's offset is the same from either edge, but its steadiness is not: each
@@ -99,9 +96,10 @@ bool PlaceLine(const Placement& p, int64_t from, int64_t to, const RelativeMapIn
 }
 
 // Are `from` and `to` parallel by their comparison (the line placement then needs no edge)?
-bool ParallelTo(int64_t from, int64_t to, const RelativeMapInputs& in) {
+bool ParallelTo(int64_t from, int64_t to, const RelativeMapInputs& in,
+                const ComparisonOptions& comparison) {
   const Comparison* c = in.comparisons.Find(from, to);
-  return c != nullptr && std::abs(std::sin(c->DeltaAlpha(from))) < kParallelSin;
+  return c != nullptr && std::abs(std::sin(c->DeltaAlpha(from))) < comparison.parallel_sin;
 }
 
 // The orientation of `to` only, through any comparison with a common interval.
@@ -125,16 +123,16 @@ bool PlaceAngle(const Placement& p, int64_t from, int64_t to, const RelativeMapI
 // in the same group gives it within a fraction of a millimetre, and the pose and every wall
 // placed after it follow the line. So: every line a parallel member gives, then one crossing
 // line, and again.
-void PlaceRest(const Group& group, const RelativeMapInputs& in, RelativeMap* map,
-               ChainOrder* order) {
+void PlaceRest(const Group& group, const RelativeMapInputs& in, const ComparisonOptions& comparison,
+               RelativeMap* map, ChainOrder* order) {
   auto place_lines = [&](bool parallel_only) {
     bool placed = false;
     for (int64_t to : group.members) {
       if (map->members.count(to)) continue;
       for (const auto& [from, p] : map->members) {
         Placement q;
-        if (parallel_only && !ParallelTo(from, to, in)) continue;
-        if (!PlaceLine(p, from, to, in, &q)) continue;
+        if (parallel_only && !ParallelTo(from, to, in, comparison)) continue;
+        if (!PlaceLine(p, from, to, in, comparison, &q)) continue;
         map->members[to] = q;
         if (order != nullptr) order->links.push_back({from, to});
         placed = true;
@@ -186,8 +184,8 @@ double EdgeEvidence(const Group& group, const RelativeMapInputs& in, int64_t m, 
 // Prim's algorithm over static pairings: repeatedly attach the unplaced member with the
 // strongest static pairing to a member placed with a point. Records the links used in `order`
 // when given.
-void GrowByPoints(const Group& group, const RelativeMapInputs& in, double max_std, RelativeMap* map,
-                  ChainOrder* order) {
+void GrowByPoints(const Group& group, const RelativeMapInputs& in,
+                  const ComparisonOptions& comparison, RelativeMap* map, ChainOrder* order) {
   struct Candidate {
     double weight = 0.0;
     int64_t from = -1;
@@ -200,7 +198,7 @@ void GrowByPoints(const Group& group, const RelativeMapInputs& in, double max_st
       if (map->members.count(to)) continue;
       Candidate cand;
       cand.from = from;
-      if (PlacePoint(p, from, to, in, max_std, &cand.placed, &cand.weight) &&
+      if (PlacePoint(p, from, to, in, comparison, &cand.placed, &cand.weight) &&
           cand.weight > candidates[to].weight) {
         candidates[to] = cand;
       }
@@ -237,7 +235,8 @@ bool LinksToMap(const RelativeMap& chain, const RelativeMapInputs& in, int64_t g
 // The basis and its reference edge among `candidates` (all members when empty): the most
 // static-pairing evidence; the map grown from it by points, its links recorded in `order`.
 RelativeMap GrowFromBest(const Group& group, const RelativeMapInputs& in,
-                         const std::set<int64_t>& candidates, double max_std, ChainOrder* order) {
+                         const std::set<int64_t>& candidates, const ComparisonOptions& comparison,
+                         ChainOrder* order) {
   double best = -1.0;
   order->basis = -1;
   order->basis_ref = -1;
@@ -253,7 +252,7 @@ RelativeMap GrowFromBest(const Group& group, const RelativeMapInputs& in,
     }
   }
   RelativeMap map = StartAt(order->basis, order->basis_ref);
-  GrowByPoints(group, in, max_std, &map, order);
+  GrowByPoints(group, in, comparison, &map, order);
   return map;
 }
 
@@ -314,7 +313,8 @@ void RefineOrientations(const RelativeMapInputs& in, RelativeMap* map) {
 // 5 mm)^2), the information of its mean with a 5 mm floor per sample; through a wall's length
 // (seen whole) half, as in the chain. The orientations are held at RefineOrientations' values:
 // the offsets stay linear in the points.
-void RefinePoints(const RelativeMapInputs& in, double max_std, RelativeMap* map) {
+void RefinePoints(const RelativeMapInputs& in, const ComparisonOptions& comparison,
+                  RelativeMap* map) {
   const auto basis = map->members.find(map->basis);
   if (basis == map->members.end() || basis->second.known != Known::kPoint) return;
   // Unknown k is member placed[k] (k >= 1); 0 is the basis, held.
@@ -361,8 +361,8 @@ void RefinePoints(const RelativeMapInputs& in, double max_std, RelativeMap* map)
             if (j != rv && !frames[v].whole) continue;
             if (s.pair_count[i][j] <= 0.0) continue;
             const double std_dev = s.PairStd(i, j);
-            if (std_dev > max_std) continue;
-            const double spread = std_dev / kSpreadScale;
+            if (std_dev > comparison.static_std) continue;
+            const double spread = std_dev / comparison.spread_scale;
             double w = 0.5 * s.pair_count[i][j] / (1.0 + spread * spread);
             if (i != ru) w *= 0.5;
             if (j != rv) w *= 0.5;
@@ -416,11 +416,11 @@ void RefinePoints(const RelativeMapInputs& in, double max_std, RelativeMap* map)
 // points as solved, and the orientations refined with them: a line left where the chain's point
 // put it keeps that point's error. The points are solved once the orientations are refined
 // (solved first, before PlaceRest on the chain's orientations, they were worse).
-void PlaceTheRest(const Group& group, const RelativeMapInputs& in, double max_std, RelativeMap* map,
-                  ChainOrder* order) {
-  PlaceRest(group, in, map, order);
+void PlaceTheRest(const Group& group, const RelativeMapInputs& in,
+                  const ComparisonOptions& comparison, RelativeMap* map, ChainOrder* order) {
+  PlaceRest(group, in, comparison, map, order);
   RefineOrientations(in, map);
-  RefinePoints(in, max_std, map);
+  RefinePoints(in, comparison, map);
   for (auto it = map->members.begin(); it != map->members.end();) {
     const bool point = it->second.known == Known::kPoint || it->first == map->basis;
     it = point ? std::next(it) : map->members.erase(it);
@@ -431,13 +431,13 @@ void PlaceTheRest(const Group& group, const RelativeMapInputs& in, double max_st
                                [&](const ChainLink& l) { return map->members.count(l.to) == 0; }),
                 links.end());
   }
-  PlaceRest(group, in, map, order);
+  PlaceRest(group, in, comparison, map, order);
   RefineOrientations(in, map);
 }
 
 // The comparison order that uses the most iterations (§II.F reordering) and the map it gives.
-RelativeMap Choose(const Group& group, const RelativeMapInputs& in, double max_std,
-                   ChainOrder* order) {
+RelativeMap Choose(const Group& group, const RelativeMapInputs& in,
+                   const ComparisonOptions& comparison, ChainOrder* order) {
   // The static pairings may form sets with no pairing between them: the chain from a basis
   // reaches its own set only, and the others are placed by lines. §II.D places a group through
   // the planes an earlier group placed, so the basis is in a set holding one whose static end
@@ -447,19 +447,19 @@ RelativeMap Choose(const Group& group, const RelativeMapInputs& in, double max_s
   // the loop after it. The other members' chains are grown only when the best one's does not
   // link (growing every member's chain at every build costs several times the time per
   // iteration on a large map).
-  RelativeMap map = GrowFromBest(group, in, {}, max_std, order);
+  RelativeMap map = GrowFromBest(group, in, {}, comparison, order);
   if (!LinksToMap(map, in, group.id)) {
     std::set<int64_t> linked;  // members whose chain reaches a static end on the global map
     for (int64_t m : group.members) {
       int ref = -1;
       if (m == order->basis || EdgeEvidence(group, in, m, &ref) <= 0.0) continue;
       RelativeMap chain = StartAt(m, ref);
-      GrowByPoints(group, in, max_std, &chain, nullptr);
+      GrowByPoints(group, in, comparison, &chain, nullptr);
       if (LinksToMap(chain, in, group.id)) linked.insert(m);
     }
-    if (!linked.empty()) map = GrowFromBest(group, in, linked, max_std, order);
+    if (!linked.empty()) map = GrowFromBest(group, in, linked, comparison, order);
   }
-  PlaceTheRest(group, in, max_std, &map, order);
+  PlaceTheRest(group, in, comparison, &map, order);
   return map;
 }
 
@@ -484,7 +484,7 @@ bool EdgePoint(const RltPlane& plane, const Placement& placement, int edge, Vect
 ChainOrder ChooseOrder(const Group& group, const RelativeMapInputs& in,
                        const ComparisonOptions& comparison) {
   ChainOrder order;
-  if (!group.members.empty()) Choose(group, in, comparison.static_std, &order);
+  if (!group.members.empty()) Choose(group, in, comparison, &order);
   return order;
 }
 
@@ -503,7 +503,7 @@ RelativeMap BuildRelativeMap(const Group& group, const RelativeMapInputs& in,
   }
   if (!kept) {
     ChainOrder fresh;
-    return Choose(group, in, comparison.static_std, &fresh);
+    return Choose(group, in, comparison, &fresh);
   }
   // §II.F: the order chosen at the reordering, with the comparisons' latest averages; a link
   // whose static pairing has gone falls back to the line, then the orientation.
@@ -517,12 +517,13 @@ RelativeMap BuildRelativeMap(const Group& group, const RelativeMapInputs& in,
     const Placement p = from->second;
     Placement q;
     double weight = 0.0;
-    if (PlacePoint(p, link.from, link.to, in, comparison.static_std, &q, &weight) ||
-        PlaceLine(p, link.from, link.to, in, &q) || PlaceAngle(p, link.from, link.to, in, &q)) {
+    if (PlacePoint(p, link.from, link.to, in, comparison, &q, &weight) ||
+        PlaceLine(p, link.from, link.to, in, comparison, &q) ||
+        PlaceAngle(p, link.from, link.to, in, &q)) {
       map.members[link.to] = q;
     }
   }
-  PlaceTheRest(group, in, comparison.static_std, &map, nullptr);
+  PlaceTheRest(group, in, comparison, &map, nullptr);
   return map;
 }
 

@@ -6,17 +6,14 @@
 
 namespace relplane::mapper {
 
-// Information (smallest eigenvalue of the sum of n n^T over unit wall normals) below which
-// walls leave a direction open: lines within ~11 degrees of parallel.
-constexpr double kOpenInformation = 0.02;
-
 // Least squares a x = b for a position, with `previous` as a weak prior (weight `prior_weight`,
 // applied when the smallest information is below `min_information`). Along a direction the
-// equations leave open (walls within ~11 degrees of parallel) the previous position is kept as
+// equations leave open (information below `open_information`, LocalisationOptions) the previous
+// position is kept as
 // it is: their lines' millimetre disagreements would otherwise move it by centimetres, through
 // the slight angle between them, every time it is solved.
 Eigen::Vector2d SolveWithPrior(const Eigen::Matrix2d& a, const Eigen::Vector2d& b,
                                const Eigen::Vector2d& previous, double prior_weight,
-                               double min_information);
+                               double min_information, double open_information);
 
 }  // namespace relplane::mapper

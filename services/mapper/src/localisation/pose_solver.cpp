@@ -252,7 +252,7 @@ PoseEstimate SolveOnce(const std::vector<Sighting>& sightings, const std::vector
   }
   // The previous position only decides a direction the walls leave open.
   const Vector2d pos = SolveWithPrior(sys.a, sys.b, m.previous.Translation(), options.prior_weight,
-                                      options.min_information);
+                                      options.min_information, options.open_information);
   out.pose = {pos.x(), pos.y(), heading.yaw};
   out.planes = static_cast<int>(planes.size());
   out.status = tracking ? PoseStatus::kTracking : PoseStatus::kMotionModel;

@@ -62,7 +62,7 @@ ClosingLoop Backtrack(const RegistrationFrame& frame, const std::vector<Observat
     }
   }
   return NoteClosing(sightings, pose, oldest, world, trajectory, motion, frame.previous_iteration,
-                     frame.previous_pose, options.grouping.recent_groups);
+                     frame.previous_pose, options);
 }
 
 // The observations into the plane store: matched ones to their rltplanes, the rest as new ones.

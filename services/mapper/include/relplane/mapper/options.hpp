@@ -9,11 +9,11 @@ namespace relplane::mapper {
 
 // §II.A plane matching on the latest untransformed observation.
 struct RegistrationOptions {
-  int last_seen_window = 5;          // iterations; a plane unseen longer cannot match
-  double max_angle = 0.2;            // rad between normals
-  double max_distance = 0.3;         // m between plane offsets d
-  double min_overlap = 0.3;          // of the shorter extent along the wall (and in height)
-  double max_wall_normal_z = 0.3;    // |normal.z| above this is floor/ceiling: not a wall (2½D)
+  int last_seen_window = 5;        // iterations; a plane unseen longer cannot match
+  double max_angle = 0.2;          // rad between normals
+  double max_distance = 0.3;       // m between plane offsets d
+  double min_overlap = 0.3;        // of the shorter extent along the wall (and in height)
+  double max_wall_normal_z = 0.3;  // |normal.z| above this is floor/ceiling: not a wall (2½D)
   // m: an end seen this far from where it last was is another end: poses a few seconds apart
   // agree to centimetres and a wall end moves continuously, while a piece's door-side end lies a
   // door's width or more from the wall's.
@@ -43,11 +43,11 @@ struct BacktrackOptions {
 
 // §II.B grouping.
 struct GroupingOptions {
-  int min_observations = 8;      // an ungrouped rltplane is processed once it has this many
-  int ungrouped_timeout = 45;    // iterations; below min_observations by then: dropped
-  int min_common = 8;            // iterations two rltplanes must share to count as co-visible
-  int covisible_window = 60;     // co-visibility is counted over this many recent iterations
-  int recent_groups = 3;         // a grouped plane not in the last few groups is "re-seen"
+  int min_observations = 8;    // an ungrouped rltplane is processed once it has this many
+  int ungrouped_timeout = 45;  // iterations; below min_observations by then: dropped
+  int min_common = 8;          // iterations two rltplanes must share to count as co-visible
+  int covisible_window = 60;   // co-visibility is counted over this many recent iterations
+  int recent_groups = 3;       // a grouped plane not in the last few groups is "re-seen"
   // rad: an ungrouped rltplane whose orientation relative to a plane seen with it spreads more
   // than this (standard deviation over its last min_observations sightings) is not grouped yet
   double max_orientation_spread = 0.035;
@@ -69,6 +69,40 @@ struct ComparisonOptions {
   double min_motion = 0.05;        // m: edges must move this much in the sensor frame (std) for
                                    // a sub-interval to tell static from dynamic edges
   double uncut_share = 0.8;        // of a sub-interval's samples, for an edge to be judged
+  // m: a static pairing's spread, against which it is discounted when the chain is chosen (§II.F)
+  double spread_scale = 0.005;
+  // sin of the angle: two lines this close in orientation are parallel in a relative map
+  double parallel_sin = 0.17;
+};
+
+// §II.D placing a group on the global map: its prior (its members as seen around when it was
+// made) and how its links' lines and static edges are weighed.
+struct GlobalMapOptions {
+  // m: a wall end seen from two fixed poses in a row moves less than this if it is the end
+  double end_still = 0.05;
+  // m: a wall end's first and latest sightings agree this well if they are the same end (the
+  // end's noise and the pose's drift since the start)
+  double first_end_agreement = 0.2;
+  // m: a sighting's middle this far from the line the others agree on is not the same wall
+  double line_agreement = 0.1;
+  // m: a fixed pose's error across a wall, added to each sighting's own offset error so that
+  // the best-fitting sighting does not take all the weight
+  double pose_noise = 0.01;
+  // cos of the angle: a member's normal this near a direction the other members' lines leave
+  // open spans it
+  double spans_open = 0.7071;
+  // Weighing a link's line: the offset noise of a fitted line where its points are (m), and
+  // how well a line must be known to count fully (m); a short piece's orientation bias is the
+  // comparison's piece blur (comparison.hpp)
+  double line_noise = 0.01;
+  double full_line = 0.03;
+  // m: a link's static edge further than this along its wall from where the group's prior puts
+  // it is not taken while another link's edge agrees with the prior (a wrongly paired edge is a
+  // wall's length or a door's width off; the prior is off by centimetres to decimetres)
+  double edge_gate = 0.5;
+  // rad^-2: the chained orientation as a gauge only, for planes no comparison links to the held
+  // ones (a comparison's information is 1e2-1e5)
+  double chained_orientation_prior = 1.0;
 };
 
 // §II.D / §II.E localisation.
@@ -95,6 +129,9 @@ struct LocalisationOptions {
   // is known (a step for each iteration the position has been held still, up to max_held).
   double max_step = 0.1;
   int max_held = 5;
+  // m^-2: information (smallest eigenvalue of the sum of n n^T over unit wall normals) below
+  // which walls leave a direction open: lines within about 11 degrees of parallel
+  double open_information = 0.02;
 };
 
 // §II.E the motion model: a constant velocity learnt from the poses the walls fixed.
@@ -102,10 +139,10 @@ struct MotionOptions {
   // rad per iteration (17 deg/s at 30 Hz): turning faster than this (by more than twice the
   // heading's own error) is turning on the spot, and the sensor is taken not to move on.
   double turn_rate = 0.01;
-  int window = 15;          // iterations the velocity is averaged over
-  int min_span = 10;        // iterations: the shortest stretch of fixed poses it is learnt from
-  int max_gap = 30;         // iterations lost in a row beyond which nothing is predicted
-  int max_stretches = 8;    // stretches looked back over, each one too short
+  int window = 15;        // iterations the velocity is averaged over
+  int min_span = 10;      // iterations: the shortest stretch of fixed poses it is learnt from
+  int max_gap = 30;       // iterations lost in a row beyond which nothing is predicted
+  int max_stretches = 8;  // stretches looked back over, each one too short
   // iterations after the last pose mapped walls placed through which a frame with no mapped
   // wall in view still gets the learnt motion's pose (half a second at 30 Hz)
   int max_coast = 15;
@@ -188,6 +225,7 @@ struct MapperOptions {
   BacktrackOptions backtrack;
   GroupingOptions grouping;
   ComparisonOptions comparison;
+  GlobalMapOptions global_map;
   LocalisationOptions localisation;
   MotionOptions motion;
   PoseGraphOptions graph;
