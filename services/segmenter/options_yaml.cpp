@@ -94,10 +94,14 @@ void ReadEm(Reader r, EmOptions* o) {
 void ReadProposals(Reader r, ProposalOptions* o) {
   ReadPositive(r, "trials", &o->trials);
   ReadPositive(r, "neighbours", &o->neighbours);
-  if (o->neighbours < 8) r.Fail("neighbours", "must be at least 8");
   ReadPositive(r, "radius", &o->radius);
   ReadPositive(r, "max_rms", &o->max_rms);
   ReadPositive(r, "max_per_round", &o->max_per_round);
+  ReadPositive(r, "min_neighbours", &o->min_neighbours);
+  if (o->neighbours < o->min_neighbours) r.Fail("neighbours", "must be at least min_neighbours");
+  ReadPositive(r, "max_flatness", &o->max_flatness);
+  if (o->max_flatness > 1.0) r.Fail("max_flatness", "must be at most 1");
+  ReadPositive(r, "inlier_sigmas", &o->inlier_sigmas);
 }
 
 void ReadMerge(Reader r, MergeOptions* o) {
@@ -105,6 +109,12 @@ void ReadMerge(Reader r, MergeOptions* o) {
   ReadPositive(r, "distance", &o->distance);
   ReadNonNegative(r, "piece_angle_deg", &o->piece_angle_deg);
   ReadNonNegative(r, "overlap_angle_deg", &o->overlap_angle_deg);
+}
+
+void ReadSeeds(Reader r, SeedOptions* o) {
+  ReadPositive(r, "kept_support", &o->kept_support);
+  ReadPositive(r, "max_turn_deg", &o->max_turn_deg);
+  ReadPositive(r, "max_shift", &o->max_shift);
 }
 
 void ReadExtents(Reader r, ExtentOptions* o) {
@@ -115,11 +125,20 @@ void ReadExtents(Reader r, ExtentOptions* o) {
   ReadPositive(r, "max_reach", &o->max_reach);
   ReadPositive(r, "max_cells", &o->max_cells);
   ReadPositive(r, "vertical_max_nz", &o->vertical_max_nz);
+  ReadPositive(r, "trim_sigmas", &o->trim_sigmas);
+  ReadNonNegative(r, "max_refits", &o->max_refits);
+  ReadPositive(r, "max_end_spacing", &o->max_end_spacing);
+  ReadPositive(r, "range_cut_share", &o->range_cut_share);
+  if (o->range_cut_share > 1.0f) r.Fail("range_cut_share", "must be at most 1");
 }
 
 void ReadDescription(Reader r, DescriptionOptions* o) {
   ReadNonNegative(r, "points_max", &o->points_max);
   ReadPositive(r, "fit_points_max", &o->fit_points_max);
+  ReadPositive(r, "leaning_rms", &o->leaning_rms);
+  ReadPositive(r, "min_line_share", &o->min_line_share);
+  if (o->min_line_share > 1.0) r.Fail("min_line_share", "must be at most 1");
+  ReadNonNegative(r, "min_noise_points", &o->min_noise_points);
 }
 
 }  // namespace
@@ -132,8 +151,10 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   ReadEm(r.Child("em"), &o.em);
   ReadProposals(r.Child("proposals"), &o.proposals);
   ReadMerge(r.Child("merge"), &o.merge);
+  ReadSeeds(r.Child("seeds"), &o.seeds);
   Reader assignment = r.Child("assignment");
   ReadPositive(assignment, "inlier_sigmas", &o.assignment.inlier_sigmas);
+  ReadPositive(assignment, "crossing_angle_deg", &o.assignment.crossing_angle_deg);
   ReadExtents(r.Child("extents"), &o.extents);
   ReadDescription(r.Child("description"), &o.description);
   r.Read("seed", &o.seed);

@@ -51,6 +51,35 @@ TEST(ServiceOptions, ReadsItsSectionAndRefusesUnknownOrBadKeys) {
   EXPECT_THROW(FromYaml("segmenter:\n  noise: 0.01\n"), config::ConfigError);
 }
 
+TEST(ServiceOptions, TheEstimatorsChoicesAreSettable) {
+  const ServiceOptions o = FromYaml(
+      "segmenter:\n  proposals: {min_neighbours: 10, max_flatness: 0.2, inlier_sigmas: 2.0}\n"
+      "  seeds: {kept_support: 0.4, max_turn_deg: 8, max_shift: 0.3}\n"
+      "  assignment: {crossing_angle_deg: 25}\n"
+      "  extents: {trim_sigmas: 3, max_refits: 4, max_end_spacing: 0.2, range_cut_share: 0.95}\n"
+      "  description: {leaning_rms: 4, min_line_share: 0.6, min_noise_points: 80}\n");
+  const Options& s = o.segmenter;
+  EXPECT_EQ(s.proposals.min_neighbours, 10);
+  EXPECT_DOUBLE_EQ(s.proposals.max_flatness, 0.2);
+  EXPECT_FLOAT_EQ(s.proposals.inlier_sigmas, 2.0f);
+  EXPECT_FLOAT_EQ(s.seeds.kept_support, 0.4f);
+  EXPECT_FLOAT_EQ(s.seeds.max_turn_deg, 8.0f);
+  EXPECT_FLOAT_EQ(s.seeds.max_shift, 0.3f);
+  EXPECT_FLOAT_EQ(s.assignment.crossing_angle_deg, 25.0f);
+  EXPECT_FLOAT_EQ(s.extents.trim_sigmas, 3.0f);
+  EXPECT_EQ(s.extents.max_refits, 4);
+  EXPECT_FLOAT_EQ(s.extents.max_end_spacing, 0.2f);
+  EXPECT_FLOAT_EQ(s.extents.range_cut_share, 0.95f);
+  EXPECT_DOUBLE_EQ(s.description.leaning_rms, 4.0);
+  EXPECT_DOUBLE_EQ(s.description.min_line_share, 0.6);
+  EXPECT_EQ(s.description.min_noise_points, 80);
+  for (const char* bad : {"proposals: {min_neighbours: 40}", "proposals: {max_flatness: 2}",
+                          "seeds: {max_shift: 0}", "extents: {range_cut_share: 1.5}",
+                          "description: {min_line_share: 0}", "seeds: {max_turn: 5}"}) {
+    EXPECT_THROW(FromYaml(std::string("segmenter:\n  ") + bad + "\n"), config::ConfigError) << bad;
+  }
+}
+
 TEST(ServiceOptions, TheKinectPresetLoads) {
   const ServiceOptions o =
       LoadServiceOptions(std::string(RELPLANE_SOURCE_DIR) + "/services/segmenter/kinect.yaml");
@@ -210,7 +239,8 @@ TEST_F(ServiceOnMemq, CloudsOfChangingSizeGiveTheSamePlanesAsEachAlone) {
   half.y.resize(office.size() / 2);
   half.z.resize(office.size() / 2);
   const Cloud order[] = {office, half, Cloud{}, office, half};
-  for (int64_t seq = 0; seq < 5; ++seq) bus::Publish(*bus_, "SENSOR_POINTS", Message(order[seq], seq));
+  for (int64_t seq = 0; seq < 5; ++seq)
+    bus::Publish(*bus_, "SENSOR_POINTS", Message(order[seq], seq));
   Drain();
   ASSERT_EQ(planes_.size(), 5u);
   auto same = [](const plane_set_t& a, const plane_set_t& b) {
@@ -236,9 +266,11 @@ TEST(ServiceOnTwoBuses, ReadsCloudsOnTheCloudBusAndPublishesPlanesOnTheMainBus) 
   auto main_bus = bus::OpenLcmBus("memq://");
   int planes_on_main = 0, planes_on_clouds = 0;
   bus::Subscribe<plane_set_t>(
-      *main_bus, "PLANES", [&](const plane_set_t&) { ++planes_on_main; }, [](const std::string&) {});
+      *main_bus, "PLANES", [&](const plane_set_t&) { ++planes_on_main; },
+      [](const std::string&) {});
   bus::Subscribe<plane_set_t>(
-      *clouds, "PLANES", [&](const plane_set_t&) { ++planes_on_clouds; }, [](const std::string&) {});
+      *clouds, "PLANES", [&](const plane_set_t&) { ++planes_on_clouds; },
+      [](const std::string&) {});
   SegmenterService service(*clouds, *main_bus, ServiceOptions{});
   service.Subscribe();
   testing::Sensor sensor;

@@ -14,9 +14,6 @@
 namespace relplane::segmenter {
 namespace {
 
-// Two planes whose normals differ by more than this meet in a line (a corner, not a step).
-constexpr float kCrossingAngleDeg = 20.0f;
-
 // Points are ranked in groups of kGroup: a group's best and second-best scores and planes stay
 // in registers while every plane is scored against it.
 constexpr size_t kGroup = 8;
@@ -107,7 +104,8 @@ RELPLANE_SIMD_CLONES void AssignPoints(const Cloud& cloud, const std::vector<EmP
   if (ambiguous) ambiguous->resize(n);
   // Only planes that cross count as ambiguous: near-parallel neighbours (a box lid just above
   // the floor) overlap in a band but do not meet in a line.
-  const float cos_crossing = std::cos(kCrossingAngleDeg * static_cast<float>(M_PI) / 180.0f);
+  const float cos_crossing =
+      std::cos(options.assignment.crossing_angle_deg * static_cast<float>(M_PI) / 180.0f);
   std::vector<uint8_t> crossing(k * k);
   for (size_t a = 0; a < k; ++a) {
     for (size_t b = 0; b < k; ++b) {

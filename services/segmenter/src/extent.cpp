@@ -15,12 +15,6 @@
 namespace relplane::segmenter {
 namespace {
 
-// The final fit of a piece uses its points within this many RMS of the first fit.
-constexpr float kTrimSigmas = 2.5f;
-// A vertical piece's trimmed fit is refitted to its points near it at most this many times more
-// (IterateTrimmedFit); most settle after one.
-constexpr int kMaxRefits = 10;
-
 struct Piece {
   int plane = 0;    // the EM plane it came from
   int support = 0;  // all its points
@@ -227,12 +221,6 @@ void TrimAndExtend(const Cloud& cloud, const Options& options, PieceWorkspace::B
   }
 }
 
-// m: a spacing of more than this at a wall's end is a view so grazing that few of the wall's
-// samples are near the end: the end moves out by at most half of it.
-constexpr float kMaxEndSpacing = 0.3f;
-// An end this close to the cloud's furthest point, as a share of its range, is a range cut.
-constexpr float kRangeCutShare = 0.98f;
-
 // Each vertical piece's ends along its wall from its points furthest out (EstimateEnd): the
 // sensor's columns of rays land `column spacing` apart along the wall at the end (SampleSpacing
 // at its horizontal range), its rows the step times that range apart up it. `ray_step`: the
@@ -268,15 +256,6 @@ void EstimateWallEnds(float ray_step, float share, float max_spacing, float rang
     if (!at_range_cut(p.lo_end, -1.0f)) p.a_min = -EstimateEnd(p.lo_end, sampling(p.a_min));
   }
 }
-
-// A piece whose RMS is over this many times the noise expected along its normal leans between
-// two surfaces (DominantLineFit) ... Pieces 2-3 times over their noise are mostly small and
-// barely turned by the fit (docs/decisions/segmenter.md).
-constexpr double kLeaningRms = 3.0;
-// ... and takes the line most of its points lie on if that line holds at least this share of them.
-constexpr double kMinLineShare = 0.5;
-// Pieces with fewer points within their trim do not vote on the sensor's noise.
-constexpr int kMinNoisePoints = 50;
 
 // Mean over the points (relative to `origin`, in the sensor frame) of (n.d)^2, d the unit ray to
 // the point: the share of a ray's noise that lands along the normal, squared.
@@ -356,11 +335,11 @@ void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorksp
     fit.rms = p.trimmed_rms;
     fit.count = p.trimmed_count;
     fits[k] = IterateTrimmedFit(points.data() + start[k], start[k + 1] - start[k],
-                                p.trimmed_centroid.cast<double>(), fit, kTrimSigmas,
-                                options.noise.sigma_min, kMaxRefits);
+                                p.trimmed_centroid.cast<double>(), fit, options.extents.trim_sigmas,
+                                options.noise.sigma_min, options.extents.max_refits);
     along[k] = MeanSquaredIncidence(points.data() + start[k], start[k + 1] - start[k],
                                     p.trimmed_centroid, fits[k].normal);
-    if (fits[k].count >= kMinNoisePoints && along[k] > 0.0) {
+    if (fits[k].count >= options.description.min_noise_points && along[k] > 0.0) {
       ray_variance.push_back(fits[k].rms * fits[k].rms / along[k] -
                              RangeVariance(options, fits[k].centroid));
     }
@@ -377,10 +356,11 @@ void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorksp
         std::max(static_cast<double>(options.noise.sigma_min),
                  std::sqrt(std::max(
                      0.0, along[k] * (sensor_variance + RangeVariance(options, fit.centroid)))));
-    if (fit.rms > kLeaningRms * expected) {
+    if (fit.rms > options.description.leaning_rms * expected) {
       const PlaneFit line = DominantLineFit(
           points.data() + start[k], start[k + 1] - start[k], p.trimmed_centroid.cast<double>(), fit,
-          kTrimSigmas * expected, kTrimSigmas, options.noise.sigma_min, kMaxRefits, kMinLineShare);
+          options.extents.trim_sigmas * expected, options.extents.trim_sigmas,
+          options.noise.sigma_min, options.extents.max_refits, options.description.min_line_share);
       if (line.fits > 0) {
         fit = line;
         p.line_refit = true;
@@ -526,7 +506,7 @@ Description DescribePieces(const DescribeRequest& request, const Options& option
     Refit(w.grids[p.plane].origin, &p);
     p.vertical = std::fabs(p.out.normal.z()) < options.extents.vertical_max_nz;
     PlaneAxes(p.out.normal, p.vertical, &p.u, &p.v);
-    p.trim = kTrimSigmas * std::max(p.out.rms, options.noise.sigma_min);
+    p.trim = options.extents.trim_sigmas * std::max(p.out.rms, options.noise.sigma_min);
     const PlaneGrid& g = w.grids[p.plane];
     const float half = 0.5f * g.cell;
     p.cell_spread = half * (std::fabs(p.out.normal.dot(g.u)) + std::fabs(p.out.normal.dot(g.v)));
@@ -546,7 +526,8 @@ Description DescribePieces(const DescribeRequest& request, const Options& option
         furthest2, cloud.x[i] * cloud.x[i] + cloud.y[i] * cloud.y[i] + cloud.z[i] * cloud.z[i]);
   }
   EstimateWallEnds(request.sampling.ray_step, std::clamp(request.sampling.share, 1e-3f, 1.0f),
-                   kMaxEndSpacing, kRangeCutShare * std::sqrt(furthest2), &pieces);
+                   options.extents.max_end_spacing,
+                   options.extents.range_cut_share * std::sqrt(furthest2), &pieces);
   std::vector<PieceStats> described;
   std::vector<int32_t> index;
   Describe(cloud, options, &w, &pieces, &described, &index);

@@ -7,20 +7,14 @@
 namespace relplane::segmenter {
 namespace {
 
-constexpr float kInlierSigmas = 2.5f;
-constexpr int kMinNeighbours = 8;
-constexpr size_t kMaxScoringPoints = 600;  // trials are scored on a strided subset
-// Smallest over middle eigenvalue of a neighbourhood's scatter: 30 neighbours on a flat patch
-// with sigma = 2 cm give about 0.04; a patch across a right-angled edge about 0.25.
-constexpr double kMaxFlatness = 0.1;
-
+constexpr size_t kMaxScoringPoints = 600;
 struct Fit {
   EmPlane plane;
   float rms = 0.0f;
   bool ok = false;
 };
 
-Fit FitIndices(const Cloud& pts, const std::vector<int>& idx) {
+Fit FitIndices(const Cloud& pts, const std::vector<int>& idx, double max_flatness) {
   Fit fit;
   if (idx.size() < 3) return fit;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -35,7 +29,7 @@ Fit FitIndices(const Cloud& pts, const std::vector<int>& idx) {
   eig.computeDirect(scatter);
   // A line-like neighbourhood has no defined normal; a thick one (across an edge) is no plane.
   if (eig.eigenvalues()(1) < 1e-6 * static_cast<double>(idx.size())) return fit;
-  if (eig.eigenvalues()(0) > kMaxFlatness * eig.eigenvalues()(1)) return fit;
+  if (eig.eigenvalues()(0) > max_flatness * eig.eigenvalues()(1)) return fit;
   const Eigen::Vector3d n = eig.eigenvectors().col(0).normalized();
   fit.plane.normal = n.cast<float>();
   fit.plane.d = static_cast<float>(-n.dot(mean));
@@ -100,12 +94,12 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
       near[within] = {d2[k], candidates[k]};
       within += d2[k] < radius2;
     }
-    if (static_cast<int>(within) < kMinNeighbours) continue;
+    if (static_cast<int>(within) < options.proposals.min_neighbours) continue;
     const size_t keep = std::min(within, static_cast<size_t>(options.proposals.neighbours));
     std::nth_element(near.begin(), near.begin() + (keep - 1), near.begin() + within);
     neighbours.resize(keep);
     for (size_t m = 0; m < keep; ++m) neighbours[m] = near[m].second;
-    Fit fit = FitIndices(pts, neighbours);
+    Fit fit = FitIndices(pts, neighbours, options.proposals.max_flatness);
     // With a known camera a neighbourhood is flat when within twice what the camera resolves
     // at the seed's depth: at range its noise alone exceeds proposal_max_rms.
     const float max_rms =
@@ -114,7 +108,8 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
             : options.proposals.max_rms;
     if (!fit.ok || fit.rms > max_rms) continue;
     const float sigma = std::clamp(fit.rms, options.noise.sigma_min, options.noise.sigma_max);
-    const size_t score = CountInliers(pts, candidates, fit.plane, kInlierSigmas * sigma, stride);
+    const size_t score =
+        CountInliers(pts, candidates, fit.plane, options.proposals.inlier_sigmas * sigma, stride);
     if (score > best_score) {
       best_score = score;
       best = fit;
@@ -126,8 +121,8 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
   EmPlane plane = best.plane;
   std::vector<int> inliers;
   for (int pass = 0; pass < 2; ++pass) {
-    inliers = Inliers(pts, candidates, plane, kInlierSigmas * plane.sigma);
-    const Fit refit = FitIndices(pts, inliers);
+    inliers = Inliers(pts, candidates, plane, options.proposals.inlier_sigmas * plane.sigma);
+    const Fit refit = FitIndices(pts, inliers, options.proposals.max_flatness);
     if (!refit.ok) return false;
     plane.normal = refit.plane.normal;
     plane.d = refit.plane.d;
@@ -135,7 +130,7 @@ bool ProposeOne(const Cloud& pts, const std::vector<int>& candidates, const Opti
     plane.sigma = std::clamp(std::max(refit.rms, options.noise.sigma_initial * 0.5f),
                              options.noise.sigma_min, options.noise.sigma_max);
   }
-  inliers = Inliers(pts, candidates, plane, kInlierSigmas * plane.sigma);
+  inliers = Inliers(pts, candidates, plane, options.proposals.inlier_sigmas * plane.sigma);
   if (static_cast<int>(inliers.size()) < min_support) return false;
   plane.support = static_cast<float>(inliers.size());
   *out = plane;

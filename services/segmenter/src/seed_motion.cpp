@@ -60,10 +60,6 @@ bool EstimateMotion(const std::vector<EmPlane>& seeds, const std::vector<EmPlane
   return true;
 }
 
-// A seed carried by the sensor's motion stays only if it finds at least this share of the
-// support it had in the previous frame (EM samples of the same size).
-constexpr float kKeptSupport = 0.5f;
-
 // Whether EM's fit of a seed is where the sensor's motion carries it (within the merge limits)
 // with enough support to stay.
 bool Follows(const Options& options, const EmPlane& predicted, const EmPlane& fit,
@@ -80,6 +76,7 @@ bool Follows(const Options& options, const EmPlane& predicted, const EmPlane& fi
 // few degrees from frame to frame. Returns the seeds put back: index, predicted place and the
 // seed's support.
 std::vector<std::pair<size_t, EmPlane>> ReanchorLostSeeds(const std::vector<EmPlane>& seeds,
+                                                          const SeedOptions& options,
                                                           float min_support,
                                                           std::vector<EmPlane>* planes) {
   std::vector<std::pair<size_t, EmPlane>> moved;
@@ -87,13 +84,11 @@ std::vector<std::pair<size_t, EmPlane>> ReanchorLostSeeds(const std::vector<EmPl
                                     [&](const EmPlane& p) { return p.support < min_support; });
   Motion motion;
   if (!any_lost || !EstimateMotion(seeds, *planes, min_support, &motion)) return moved;
-  // Normal motion between frames (a robot at 1.5 m/s and 90 degrees/s seen at 30 Hz moves 5 cm
-  // and 3 degrees): beyond these limits the fits the motion came from may have jumped to other
+  // Beyond normal motion between frames the fits the motion came from may have jumped to other
   // surfaces, and proposals are the safer start.
-  constexpr float kMaxTurn = 5.0f * static_cast<float>(M_PI) / 180.0f;  // radians
-  constexpr float kMaxShift = 0.2f;                                     // metres
-  if (Eigen::AngleAxisf(motion.rotation).angle() > kMaxTurn ||
-      motion.translation.norm() > kMaxShift) {
+  const float max_turn = options.max_turn_deg * static_cast<float>(M_PI) / 180.0f;  // radians
+  if (Eigen::AngleAxisf(motion.rotation).angle() > max_turn ||
+      motion.translation.norm() > options.max_shift) {
     return moved;
   }
   for (size_t j = 0; j < seeds.size(); ++j) {
@@ -113,12 +108,12 @@ std::vector<std::pair<size_t, EmPlane>> ReanchorLostSeeds(const std::vector<EmPl
 
 int CarryLostSeeds(const Cloud& sample, const Options& options, const std::vector<EmPlane>& seeds,
                    float min_support, std::vector<EmPlane>* planes, Responsibilities* resp) {
-  const auto moved = ReanchorLostSeeds(seeds, min_support, planes);
+  const auto moved = ReanchorLostSeeds(seeds, options.seeds, min_support, planes);
   if (moved.empty()) return 0;
   RunEm(sample, options, options.em.iterations, planes, resp);
   int kept = 0;
   for (const auto& [j, predicted] : moved) {
-    const float least = std::max(kKeptSupport * predicted.support, min_support);
+    const float least = std::max(options.seeds.kept_support * predicted.support, min_support);
     if (Follows(options, predicted, (*planes)[j], least)) {
       ++kept;
     } else {

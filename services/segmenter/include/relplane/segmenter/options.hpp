@@ -46,6 +46,12 @@ struct ProposalOptions {
   float radius = 0.5f;    // metres, at most this far from the seed
   float max_rms = 0.03f;  // metres, a neighbourhood flatter than this may seed a plane
   int max_per_round = 4;
+  int min_neighbours = 8;  // a trial needs at least this many unexplained points within radius
+  // A neighbourhood whose scatter's smallest eigenvalue is over this share of its middle one is
+  // not flat (30 neighbours on a flat patch with sigma = 2 cm give about 0.04; a patch across a
+  // right-angled edge about 0.25).
+  double max_flatness = 0.1;
+  float inlier_sigmas = 2.5f;  // a proposal's inliers lie within this many of its sigma
 };
 
 // When two planes or two pieces are one surface (`segmenter.merge`).
@@ -63,9 +69,24 @@ struct MergeOptions {
   float overlap_angle_deg = 20.0f;
 };
 
+// Planes seeded from the previous frame and carried by the sensor's motion when EM loses them
+// (`segmenter.seeds`).
+struct SeedOptions {
+  // A carried seed stays only if it finds at least this share of the support it had in the
+  // previous frame.
+  float kept_support = 0.5f;
+  // Normal motion between frames (a robot at 1.5 m/s and 90 degrees/s at 30 Hz moves 5 cm and 3
+  // degrees): beyond these the fits the motion came from may have jumped to other surfaces,
+  // and seeds are not carried.
+  float max_turn_deg = 5.0f;
+  float max_shift = 0.2f;  // metres
+};
+
 // The hard assignment of every point after EM (`segmenter.assignment`).
 struct AssignmentOptions {
   float inlier_sigmas = 3.0f;  // a point supports its nearest plane within this many sigma
+  // Two planes whose normals differ by more than this meet in a line (a corner, not a step).
+  float crossing_angle_deg = 20.0f;
 };
 
 // Connected pieces of each plane's support and their extents (`segmenter.extents`).
@@ -79,6 +100,14 @@ struct ExtentOptions {
   float max_reach = 1.5f;        // ... but never beyond this, metres
   int max_cells = 250000;        // the grid coarsens beyond this many cells per plane
   float vertical_max_nz = 0.1f;  // |normal.z| below this is a vertical plane: rectangle extent
+  float trim_sigmas =
+      2.5f;             // a piece's final fit uses its points within this many RMS of the first
+  int max_refits = 10;  // a vertical piece's trimmed fit is refitted at most this many more times
+  // metres: a spacing of more than this at a wall's end is a view so grazing that few of the
+  // wall's samples are near the end: the end moves out by at most half of it.
+  float max_end_spacing = 0.3f;
+  // An end this close to the cloud's furthest point, as a share of its range, is a range cut.
+  float range_cut_share = 0.98f;
 };
 
 // How many of a frame's points describe its pieces (`segmenter.description`).
@@ -93,6 +122,12 @@ struct DescriptionOptions {
   // below the systematic ones). Support counts, connectivity and extents use every described
   // point.
   int fit_points_max = 80000;
+  // A piece whose RMS is over this many times the noise expected along its normal leans between
+  // two surfaces and takes the line most of its points lie on (dominant line fit), if that line
+  // holds at least min_line_share of them.
+  double leaning_rms = 3.0;
+  double min_line_share = 0.5;
+  int min_noise_points = 50;  // pieces with fewer points within their trim do not vote on the noise
 };
 
 struct Options {
@@ -100,6 +135,7 @@ struct Options {
   EmOptions em;
   ProposalOptions proposals;
   MergeOptions merge;
+  SeedOptions seeds;
   AssignmentOptions assignment;
   ExtentOptions extents;
   DescriptionOptions description;
