@@ -81,8 +81,8 @@ TEST(Localisation, AShortNoisyWallDoesNotTurnTheHeading) {
   const double jamb_error = 5.0 * M_PI / 180.0;
   // Sensor at the origin facing +x; walls in the sensor frame (the map is the same frame).
   std::vector<Observation> seen = {
-      Seen(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005),              // left wall, y = 1
-      Seen(M_PI, 4.0, -1.0, 1.0, 3000, 0.005),                   // end wall, x = 4
+      Seen(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005),     // left wall, y = 1
+      Seen(M_PI, 4.0, -1.0, 1.0, 3000, 0.005),          // end wall, x = 4
       Seen(jamb_error, 1.5, -0.05, 0.05, 300, 0.005)};  // jamb, x = -1.5
   for (Observation& obs : seen) obs.iteration = 1;
   std::vector<Observation> mapped = seen;
@@ -278,7 +278,7 @@ TEST(Localisation, WithTheMotionKnownACoarselySampledEndDoesNotMoveThePosition) 
 // along the wall.
 double EndWeight(const LearnedFrustum& frustum, const Observation& seen) {
   const double spacing = frustum.EdgeSpacing(seen.edge[1], seen.d);
-  const double noise2 = LearnedFrustum::kEdgeNoise * LearnedFrustum::kEdgeNoise;
+  const double noise2 = LocalisationOptions{}.edge_noise * LocalisationOptions{}.edge_noise;
   return noise2 / (noise2 + spacing * spacing);
 }
 
@@ -289,7 +289,7 @@ double EndWeight(const LearnedFrustum& frustum, const Observation& seen) {
 // with no motion known the end is all there is.
 TEST(Localisation, WithTheMotionKnownAnEndFarFromAFreshPredictionIsNotTheWalls) {
   const LearnedFrustum frustum = SampledFrustum();
-  ASSERT_LE(frustum.EdgeSpacing({2.0, 1.0}, 1.0), LearnedFrustum::kEdgeNoise);
+  ASSERT_LE(frustum.EdgeSpacing({2.0, 1.0}, 1.0), LocalisationOptions{}.edge_noise);
   const OneWallEnd wall(1.93, 2.0);
   const PoseEstimate fresh = wall.From(frustum, 1);
   EXPECT_EQ(fresh.status, PoseStatus::kMotionModel);
@@ -318,8 +318,8 @@ TEST(Localisation, WithTheMotionKnownAnEndIsWeighedAgainstThePredictionByTheirNo
   EXPECT_NEAR(fine.From(frustum, 0).pose.x, 0.025, 1e-3);
   const OneWallEnd coarse(2.375, 2.4);
   const double spacing = frustum.EdgeSpacing(coarse.seen.edge[1], coarse.seen.d);
-  ASSERT_GT(spacing, LearnedFrustum::kEdgeNoise);
-  ASSERT_LT(spacing, 2.0 * LearnedFrustum::kEdgeNoise);
+  ASSERT_GT(spacing, LocalisationOptions{}.edge_noise);
+  ASSERT_LT(spacing, 2.0 * LocalisationOptions{}.edge_noise);
   const double w_coarse = EndWeight(frustum, coarse.seen);
   EXPECT_LT(w_coarse, 0.5);
   EXPECT_NEAR(coarse.From(frustum, 15).pose.x, 0.025 * w_coarse / (w_coarse + 1.0), 1e-4);
@@ -366,11 +366,11 @@ struct HallwayEnd {
 TEST(Localisation, WithTheMotionKnownAnEndThatAloneFixesThePositionIsWeighedAgainstThePrediction) {
   const LearnedFrustum frustum = SampledFrustum();
   const HallwayEnd view(2.0, 1.98);
-  ASSERT_LT(frustum.EdgeSpacing(view.left.edge[1], view.left.d), LearnedFrustum::kEdgeNoise);
+  ASSERT_LT(frustum.EdgeSpacing(view.left.edge[1], view.left.d), LocalisationOptions{}.edge_noise);
   const double w = EndWeight(frustum, view.left), prediction = 9.0;  // (3 cm / 1 cm)^2
   const geometry::Pose2 origin{0.0, 0.0, 0.0};
-  const PoseEstimate known = Localise(view.sightings, origin, frustum, {}, 0,
-                                      LearntVelocity(1, LocalisationOptions{}));
+  const PoseEstimate known =
+      Localise(view.sightings, origin, frustum, {}, 0, LearntVelocity(1, LocalisationOptions{}));
   EXPECT_EQ(known.status, PoseStatus::kTracking);
   EXPECT_NEAR(known.pose.x, 0.02 * w / (w + prediction), 1e-4);
   EXPECT_NEAR(known.pose.y, 0.0, 1e-6);
@@ -389,8 +389,8 @@ TEST(Localisation, WithTheMotionKnownAStaticEndFarFromThePredictionIsNotTheWalls
   const LearnedFrustum frustum = SampledFrustum();
   const HallwayEnd view(2.6, 1.95);
   const geometry::Pose2 origin{0.0, 0.0, 0.0};
-  const PoseEstimate known = Localise(view.sightings, origin, frustum, {}, 0,
-                                      LearntVelocity(30, LocalisationOptions{}));
+  const PoseEstimate known =
+      Localise(view.sightings, origin, frustum, {}, 0, LearntVelocity(30, LocalisationOptions{}));
   EXPECT_EQ(known.status, PoseStatus::kMotionModel);
   EXPECT_NEAR(known.pose.x, 0.0, 1e-6);
   const PoseEstimate unknown = Localise(view.sightings, origin, frustum, {}, 0, {});
@@ -423,8 +423,8 @@ PoseEstimate FromAnEndSeenBefore(const LearnedFrustum& frustum, double end_x) {
 // instead (turning on the spot at a corner, such ends stepped it 5 and 8 cm forwards).
 TEST(Localisation, WithNoMotionKnownOnlyAFinelySampledEndSeenBeforeMovesThePosition) {
   const LearnedFrustum frustum = SampledFrustum();
-  ASSERT_LT(frustum.EdgeSpacing({2.0, 1.0}, 1.0), 2.0 * LearnedFrustum::kEdgeNoise);
-  ASSERT_GT(frustum.EdgeSpacing({4.8, 1.0}, 1.0), 2.0 * LearnedFrustum::kEdgeNoise);
+  ASSERT_LT(frustum.EdgeSpacing({2.0, 1.0}, 1.0), 2.0 * LocalisationOptions{}.edge_noise);
+  ASSERT_GT(frustum.EdgeSpacing({4.8, 1.0}, 1.0), 2.0 * LocalisationOptions{}.edge_noise);
   const PoseEstimate fine = FromAnEndSeenBefore(frustum, 2.0);
   EXPECT_EQ(fine.status, PoseStatus::kMotionModel);
   EXPECT_TRUE(fine.end_moved);

@@ -22,7 +22,8 @@ namespace relplane::mapper {
 // The components and what the facade keeps of the frame sequence.
 struct Mapper::Steps {
   explicit Steps(const MapperOptions& options)
-      : motion(options.motion, options.localisation.max_step),
+      : frustum(options.localisation),
+        motion(options.motion, options.localisation.max_step),
         localiser(options),
         pose{options.start_pose.x, options.start_pose.y, options.start_pose.yaw} {}
 

@@ -400,7 +400,7 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
         const int ref = rel.known == Known::kPoint &&
                                 FirstSightingShowsEnd(in.trajectory, *plane, seen, rel.ref,
                                                       options.global_map.first_end_agreement) &&
-                                !CoarselySampled(in, seen, rel.ref)
+                                !CoarselySampled(in, seen, rel.ref, options)
                             ? rel.ref
                             : -1;
         links.push_back({rel, PlacementOf(seen, ref), plane,

@@ -14,6 +14,10 @@ namespace {
 using Eigen::Vector2d;
 using geometry::Pose2;
 
+// m: samples this far apart along a wall put its end off by more than the end's own noise
+// (LocalisationOptions::edge_noise, 2 sigma) could.
+double CoarseSpacing(const MapperOptions& options) { return 2.0 * options.localisation.edge_noise; }
+
 }  // namespace
 
 Pose2 PoseAt(const GlobalMapInputs& in, int64_t iteration, const MapperOptions& options) {
@@ -51,10 +55,6 @@ SeenWall SeenWhenMade(const GlobalMapInputs& in, Group& group, int64_t id,
   if (in.trajectory.poses.count(group.created) != 0) kept = seen;
   return seen;
 }
-
-// m: samples this far apart along a wall put its end off by more than the end's own noise
-// (LearnedFrustum::kEdgeNoise, 2 sigma) could.
-constexpr double kCoarseSpacing = 2.0 * LearnedFrustum::kEdgeNoise;
 
 }  // namespace
 
@@ -278,7 +278,7 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
     // metres down the hallway with samples decimetres apart, puts a group centimetres along the
     // hallway, and the walls it places there, and the poses that come back past them, stay as
     // far off.
-    // Only where the sighting then was that coarse (samples further apart than kCoarseSpacing),
+    // Only where the sighting then was that coarse (samples further apart than CoarseSpacing),
     // and the later one at most half as coarse: a pose fixed after the group was made may have
     // been fixed by the group itself, so a sighting from it brings the group back to where it
     // is, give or take the pose's error. Taken where the sighting then was already fine, the
@@ -290,7 +290,7 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
         FinestEndSighting(in, options.global_map, group, id, rel.ref, &fine_spacing);
     const double made_spacing = SpacingAt(in, made, rel.ref);
     const bool finer =
-        fine.valid && made_spacing > kCoarseSpacing && fine_spacing <= 0.5 * made_spacing;
+        fine.valid && made_spacing > CoarseSpacing(options) && fine_spacing <= 0.5 * made_spacing;
     const SeenWall& seen = finer ? fine : made;
     const Pose2 p = PlacementFromSighting(seen, rel);
     sum += p.Translation();
@@ -370,8 +370,9 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
 
 }  // namespace
 
-bool CoarselySampled(const GlobalMapInputs& in, const SeenWall& seen, int ref) {
-  return SpacingAt(in, seen, ref) > kCoarseSpacing;
+bool CoarselySampled(const GlobalMapInputs& in, const SeenWall& seen, int ref,
+                     const MapperOptions& options) {
+  return SpacingAt(in, seen, ref) > CoarseSpacing(options);
 }
 
 Prior PriorWithMemberLines(const GlobalMapInputs& in, Group& group, const MapperOptions& options) {

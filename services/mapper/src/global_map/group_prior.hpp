@@ -47,8 +47,10 @@ SeenWall LineWhenMade(const GlobalMapInputs& in, Group& group, int64_t id,
                       const MapperOptions& options);
 
 // Were the samples at end `ref` of `seen` further apart than the end's own noise (2 sigma,
-// LearnedFrustum::kEdgeNoise)? The last sample on the wall is then centimetres short of the end.
-bool CoarselySampled(const GlobalMapInputs& in, const SeenWall& seen, int ref);
+// LocalisationOptions::edge_noise)? The last sample on the wall is then centimetres short of the
+// end.
+bool CoarselySampled(const GlobalMapInputs& in, const SeenWall& seen, int ref,
+                     const MapperOptions& options);
 
 // PriorPlacement, with its members' lines as seen to decide the directions they span. A wall's
 // line is fitted to all its points, while an end is where the sensor's last ray met the wall,

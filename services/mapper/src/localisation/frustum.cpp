@@ -113,9 +113,9 @@ double LearnedFrustum::RangeLimit() const { return range_limit_; }
 bool LearnedFrustum::Clipped(const Eigen::Vector2d& edge) const {
   // The edge's bearing is uncertain by its position noise over its range.
   const double range = edge.norm();
-  const double margin = kBearingMargin + std::atan2(kEdgeNoise, range);
+  const double margin = kBearingMargin + std::atan2(edge_noise_, range);
   if (std::abs(std::atan2(edge.y(), edge.x())) > Limit() - margin) return true;
-  return range > RangeLimit() - kEdgeNoise - 4 * kRangeBin;
+  return range > RangeLimit() - edge_noise_ - 4 * kRangeBin;
 }
 
 bool LearnedFrustum::Clipped(const Eigen::Vector2d& edge, const Eigen::Vector2d& other) const {
@@ -126,7 +126,7 @@ bool LearnedFrustum::Clipped(const Eigen::Vector2d& edge, const Eigen::Vector2d&
   // short of where the distance alone says cut, and put a group 1.56 m off). The edge is cut if
   // the wall past it reaches that distance within the bearing margin, as seen from the sensor:
   // the next sample along it may have been out of range (§II.C: no static edge).
-  const double range = RangeLimit() - kEdgeNoise - 4 * kRangeBin;  // as above
+  const double range = RangeLimit() - edge_noise_ - 4 * kRangeBin;  // as above
   const double length = (edge - other).norm();
   if (!std::isfinite(range) || length <= 0.0) return false;
   const Eigen::Vector2d t = (edge - other) / length;  // along the wall, past this edge
@@ -135,7 +135,7 @@ bool LearnedFrustum::Clipped(const Eigen::Vector2d& edge, const Eigen::Vector2d&
   const double normal = std::abs(t.x() * edge.y() - t.y() * edge.x());
   if (normal >= range) return false;
   const double gap = std::acos(normal / range) - std::atan2(along, normal);
-  return gap < kBearingMargin + std::atan2(kEdgeNoise, edge.norm());
+  return gap < kBearingMargin + std::atan2(edge_noise_, edge.norm());
 }
 
 }  // namespace relplane::mapper

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "plane_store/observation.hpp"
+#include "relplane/mapper/options.hpp"
 
 namespace relplane::mapper {
 
@@ -23,6 +24,10 @@ namespace relplane::mapper {
 // end).
 class LearnedFrustum {
  public:
+  // `options.edge_noise` widens the margins an edge is judged cut within.
+  explicit LearnedFrustum(const LocalisationOptions& options = {})
+      : edge_noise_(options.edge_noise) {}
+
   void Observe(const Eigen::Vector2d& edge);
   // The half field of view: the pile-up's upper bin edge once it stands out, else the widest.
   double Limit() const;
@@ -33,11 +38,11 @@ class LearnedFrustum {
   // and reaches the range within the bearing margin (rays grazing a wall sample it sparsely,
   // and the last sample in range may lie well short of the limit).
   bool Clipped(const Eigen::Vector2d& edge, const Eigen::Vector2d& other) const;
-  static constexpr double kEdgeNoise = 0.03;  // m, a wall end's position noise (2 sigma)
   // The sensor's angular sampling step, learnt from the walls seen: a wall's solid angle over
   // the points that support it is the solid angle per ray. Nought until enough are seen.
   void ObserveSampling(const Observation& obs);
   double AngularStep() const;
+  double EdgeNoise() const { return edge_noise_; }
   // How far apart the sensor's samples land along a wall at its edge `edge` (sensor frame), the
   // wall's line `d` from the sensor: the step times r^2 / d. Nought while the step is unknown.
   double EdgeSpacing(const Eigen::Vector2d& edge, double d) const;
@@ -50,6 +55,7 @@ class LearnedFrustum {
   static constexpr int kRangeBins = 2500;          // up to 50 m
   static constexpr int kMinPile = 20;
   void UpdateRangeLimit();
+  double edge_noise_;  // m (LocalisationOptions::edge_noise)
   double max_bearing_ = 0.0;
   int counts_[kBins] = {};
   int mode_bin_ = 0;

@@ -11,8 +11,7 @@ Observability ObservabilityOf(const PoseEstimate& estimate, const ObservabilityO
   const bool solved =
       estimate.status == PoseStatus::kTracking || estimate.status == PoseStatus::kMotionModel;
   if (solved) {
-    const double unit = LearnedFrustum::kEdgeNoise;
-    information.topLeftCorner<2, 2>() = estimate.position_information / (unit * unit);
+    information.topLeftCorner<2, 2>() = estimate.position_information;
     if (std::isfinite(estimate.yaw_sigma) && estimate.yaw_sigma > 0.0) {
       information(2, 2) = 1.0 / (estimate.yaw_sigma * estimate.yaw_sigma);
     }

@@ -42,7 +42,7 @@ struct Heading {
 // are good to a wall end's noise: less as its samples land further apart along the wall.
 double EndWeight(const LearnedFrustum& frustum, const Observation& obs, int e) {
   const double spacing = frustum.EdgeSpacing(obs.edge[e], obs.d);
-  const double noise = LearnedFrustum::kEdgeNoise;
+  const double noise = frustum.EdgeNoise();
   return noise * noise / (noise * noise + spacing * spacing);
 }
 
@@ -126,7 +126,7 @@ bool AddStaticEnds(const std::vector<Sighting>& sightings, const std::vector<boo
       if (!EdgePoint(*x.plane, x.world, e, &mapped)) continue;
       const double along = t.dot(mapped - rot * x.obs->edge[e]);
       if (motion_known && std::abs(along - t.dot(m.previous.Translation())) >=
-                              LearnedFrustum::kEdgeNoise + m.prediction.sigma) {
+                              m.options.edge_noise + m.prediction.sigma) {
         continue;
       }
       const double w = motion_known ? EndWeight(frustum, *x.obs, e) : 1.0;
@@ -169,13 +169,13 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
         if (std::abs(moved) >= options.end_gate) continue;
         // With the motion known the prediction is good to an end's noise and the velocity's
         // drift since the walls last fixed the position: an end further off is not the wall's.
-        if (motion_known && std::abs(moved) >= LearnedFrustum::kEdgeNoise + m.prediction.sigma) {
+        if (motion_known && std::abs(moved) >= m.options.edge_noise + m.prediction.sigma) {
           continue;
         }
         // With the motion known, an end whose samples land further apart than its noise says
         // less than the learnt velocity: it stands for frames and jumps a column.
         const double spacing = m.frustum.EdgeSpacing(x.obs->edge[e], x.obs->d);
-        if (motion_known && spacing > 2.0 * LearnedFrustum::kEdgeNoise) continue;
+        if (motion_known && spacing > 2.0 * m.options.edge_noise) continue;
         sys->Add(t, along, motion_known ? EndWeight(m.frustum, *x.obs, e) : 1.0);
         placed_ends += motion_known ? 1 : 0;
         continue;
@@ -185,7 +185,7 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
       // platform drives forwards), never back, and by up to a step for each iteration held
       // still. An end outside that, by more than its noise, is seen past where it stands.
       const double forwards = t.dot(rot.col(0)) >= 0.0 ? moved : -moved;
-      const double noise = LearnedFrustum::kEdgeNoise;
+      const double noise = m.options.edge_noise;
       const double reach = options.max_step * (1 + std::clamp(m.held, 0, options.max_held));
       if (forwards <= -noise || forwards >= reach + noise) continue;
       // Nor an end whose samples land further apart than its noise, as with the motion known:
@@ -203,10 +203,10 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
   }
   // With the motion known, the ends weighed against the learnt velocity's prediction by their
   // noise: the prediction drifts by up to drift_rate an iteration since the walls last fixed
-  // the position, a mapped end is good to kEdgeNoise (the lines' unit weight stands for that).
+  // the position, a mapped end is good to `edge_noise` (the lines' unit weight stands for that).
   if (placed_ends > 0) {
     const double sigma = std::max(m.prediction.sigma, options.drift_rate);
-    const double w = std::pow(LearnedFrustum::kEdgeNoise / sigma, 2);
+    const double w = std::pow(m.options.edge_noise / sigma, 2);
     sys->AddPrior(open, open.dot(m.previous.Translation()), w);
   }
   // The platform drives forwards (as the learnt velocity takes it): along an open direction
@@ -242,7 +242,7 @@ PoseEstimate SolveOnce(const std::vector<Sighting>& sightings, const std::vector
     const Vector2d open = line_eig.eigenvectors().col(0);
     const double sigma = std::max(options.tracked_prediction, m.prediction.sigma);
     sys.AddPrior(open, open.dot(m.previous.Translation()),
-                 std::pow(LearnedFrustum::kEdgeNoise / sigma, 2));
+                 std::pow(m.options.edge_noise / sigma, 2));
   }
   Eigen::SelfAdjointEigenSolver<Matrix2d> eig(sys.a);
   const double information = eig.eigenvalues()(0);
@@ -256,7 +256,7 @@ PoseEstimate SolveOnce(const std::vector<Sighting>& sightings, const std::vector
   out.pose = {pos.x(), pos.y(), heading.yaw};
   out.planes = static_cast<int>(planes.size());
   out.status = tracking ? PoseStatus::kTracking : PoseStatus::kMotionModel;
-  out.position_information = sys.seen;
+  out.position_information = sys.seen / (options.edge_noise * options.edge_noise);  // m^-2
   return out;
 }
 

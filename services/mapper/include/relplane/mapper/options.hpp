@@ -132,6 +132,9 @@ struct LocalisationOptions {
   // m^-2: information (smallest eigenvalue of the sum of n n^T over unit wall normals) below
   // which walls leave a direction open: lines within about 11 degrees of parallel
   double open_information = 0.02;
+  // m: a wall end's position noise (2 sigma) where its samples lie close together: a mapped
+  // end and a static edge seen now are held to it, and a line's unit weight stands for it
+  double edge_noise = 0.03;
 };
 
 // §II.E the motion model: a constant velocity learnt from the poses the walls fixed.

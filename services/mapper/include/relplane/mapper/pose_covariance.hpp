@@ -7,10 +7,9 @@
 
 namespace relplane::mapper {
 
-// From the position information the solve's walls and ends gave (a line's unit weight stands
-// for LearnedFrustum::kEdgeNoise) and the heading's sigma. The heading is solved first and the
-// position given it (§II.D), so the two are taken as uncorrelated. A pose no wall fixed
-// (initializing, lost) has the prior's covariance.
+// From the position information the solve's walls and ends gave (m^-2) and the heading's sigma. The
+// heading is solved first and the position given it (§II.D), so the two are taken as uncorrelated.
+// A pose no wall fixed (initializing, lost) has the prior's covariance.
 Observability ObservabilityOf(const PoseEstimate& estimate,
                               const ObservabilityOptions& options = {});
 

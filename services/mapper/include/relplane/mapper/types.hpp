@@ -13,7 +13,7 @@ namespace relplane::mapper {
 // A plane in the sensor frame (x forward, y left, z up), as PLANES carries it.
 struct PlaneInput {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  // unit, towards the sensor
-  double d = 0.0;                                      // normal . p + d = 0
+  double d = 0.0;                                     // normal . p + d = 0
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> vertices;  // visible extent (4 corners of a wall's rectangle)
   int support = 0;
@@ -33,9 +33,10 @@ struct PoseEstimate {
   // rad: how far off the heading may be (the walls' fit sigmas and short-piece bias combined).
   double yaw_sigma = 0.0;
   // What the walls' lines and ends in view fixed of the position, without the previous pose
-  // or the learnt velocity's prediction: the sum of w d d^T over the solve's equations, weight
-  // 1 for a line good to LearnedFrustum::kEdgeNoise (pose_covariance.hpp turns it into a
-  // covariance; its small eigenvalues are the directions the walls leave open).
+  // or the learnt velocity's prediction, in m^-2: the sum of w d d^T over the solve's equations,
+  // weight 1 / edge_noise^2 for a line good to LocalisationOptions::edge_noise
+  // (pose_covariance.hpp turns it into a covariance; its small eigenvalues are the directions
+  // the walls leave open).
   Eigen::Matrix2d position_information = Eigen::Matrix2d::Zero();
   // The odometry given with the planes was not used: it moved farther than the platform can
   // (LocalisationOptions::max_step an iteration) or was not finite; the learnt velocity stood in.
