@@ -1,7 +1,8 @@
 #pragma once
-// §II.D the map-building step of an iteration: the first group whose relative map is out of date
-// (`dirty`) is built again, and the global map re-chained from it (BuildGlobalMap). One group per
-// iteration: the next dirty one waits for the next iteration.
+// §II.D the map-building step of an iteration: the global map is chained again from the first
+// group whose relative map is out of date (`dirty`), and that group and every later dirty one
+// are built again on the way (BuildGlobalMap): hard chaining moves every group after one that
+// moved.
 
 #include "global_map/inputs.hpp"
 #include "global_map/world_map.hpp"
