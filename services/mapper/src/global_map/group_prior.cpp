@@ -362,10 +362,14 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
   // No member showed its end around when the group was made (§II.D): the basis's sighting then
   // says nothing along its wall (a side wall first seen where the 6 m range cut it, 1.6 m short of
   // its corner, put a group and every pose after it 1.56 m off). Its end as the fixed poses
-  // have seen it since, when they have.
+  // have seen it since the group was made, when they have. Not from before: the end the group's
+  // relative map starts from is the one its members' comparisons saw, and the rltplane's end
+  // seen earlier may be another end of the surface (a collinear piece's before a doorway, seen
+  // from the start), metres along the wall.
   const SeenWall since =
       EndSeenFromFixedPoses(in.trajectory, *in.store.Plane(basis), basis_rel.ref);
-  return since.valid ? PlacementFromSighting(since, basis_rel) : prior;
+  return since.valid && since.iteration >= group.created ? PlacementFromSighting(since, basis_rel)
+                                                         : prior;
 }
 
 }  // namespace
