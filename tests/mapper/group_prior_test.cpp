@@ -337,6 +337,31 @@ TEST(GroupPrior, AGroupMadeWhileTheMotionModelCarriedThePoseIsPlacedFromTheEndsS
   ExpectSidesSeenSincePlacedAtTheirEnds(&state, 4, 3.0, false, 5, 9, 6);
 }
 
+TEST(GroupPrior, AGroupIsNotPlacedFromAnotherEndTheRltplaneShowedBeforeItWasMade) {
+  // Driving along x at 0.1 m an iteration; the walls fix the pose up to iteration 3, then the
+  // motion model carries it (truthfully). From the start pose the hallway's sides were seen
+  // ending at x = 1.2, uncut: the end of the collinear piece before a doorway; at iterations 1-3
+  // that end was hidden (cut). From iteration 8 on they are seen ending at x = 3, and group 1,
+  // made at iteration 10, knows those ends. The fixed poses saw only the other end, before the
+  // group was made: the prior must come from the sightings when the group was made, not put
+  // the group 1.8 m short (a corridor's group, the pose and every wall after it went 1.83 m back
+  // along it).
+  MapperState state = DrivingAlongX(12, 3);
+  const auto at = [](int64_t k) { return 0.1 * static_cast<double>(k); };
+  RltPlane left(1, SeenAlongXCut({-1, 1}, {1.2, 1}, at(0), 0, false), 0.05, 1000);
+  RltPlane right(2, SeenAlongXCut({-1, -1}, {1.2, -1}, at(0), 0, false), 0.05, 1000);
+  for (int64_t k = 1; k <= 3; ++k) {
+    left.Add(SeenAlongXCut({-1, 1}, {1.2, 1}, at(k), k, true));
+    right.Add(SeenAlongXCut({-1, -1}, {1.2, -1}, at(k), k, true));
+  }
+  for (int64_t k = 8; k <= 12; ++k) {
+    left.Add(SeenAlongXCut({-1, 1}, {3, 1}, at(k), k, false));
+    right.Add(SeenAlongXCut({-1, -1}, {3, -1}, at(k), k, false));
+  }
+  const Observation end = SeenAlongXCut({4, -1}, {4, 1}, at(12), 12, false);
+  ExpectSidesPlacedAtTheirEnds(&state, std::move(left), std::move(right), end, 10);
+}
+
 // Driving along x at 0.1 m an iteration, the walls fixing the pose: the end wall x = 4 (plane 0)
 // seen square on, the hallway's left side y = 1 (plane 1), and its right side y = -1 (plane 2),
 // which group 0 mapped by its line. Seen 2.5 m along the wall 1 m beside the sensor, the left
