@@ -21,6 +21,38 @@ MapperOptions ReadMapperOptions(Reader& r) {
   r.Read("max_observations", &o.max_observations);
   if (o.max_observations < 16) r.Fail("max_observations", "must be at least 16");
 
+  Reader fit = r.Child("fit");
+  fit.Read("orientation_floor", &o.fit.orientation_floor);
+  fit.Read("piece_blur", &o.fit.piece_blur);
+  Positive(fit, "orientation_floor", o.fit.orientation_floor);
+  Positive(fit, "piece_blur", o.fit.piece_blur);
+
+  Reader rp = r.Child("rltplane");
+  rp.Read("noise_hysteresis", &o.rltplane.noise_hysteresis);
+  rp.Read("smoothing", &o.rltplane.smoothing);
+  rp.Read("noise_window", &o.rltplane.noise_window);
+  rp.Read("full_length_sightings", &o.rltplane.full_length_sightings);
+  rp.Read("retired_lengths", &o.rltplane.retired_lengths);
+  if (!(o.rltplane.noise_hysteresis >= 0.0)) rp.Fail("noise_hysteresis", "must be 0 or more");
+  if (o.rltplane.smoothing < 3) rp.Fail("smoothing", "must be at least 3");
+  if (o.rltplane.noise_window < 1) rp.Fail("noise_window", "must be at least 1");
+  if (o.rltplane.full_length_sightings < 1) rp.Fail("full_length_sightings", "must be at least 1");
+  if (o.rltplane.retired_lengths < 2) rp.Fail("retired_lengths", "must be at least 2");
+
+  Reader view = r.Child("view");
+  view.Read("bearing_margin", &o.view.bearing_margin);
+  view.Read("min_pile", &o.view.min_pile);
+  view.Read("pile_contrast", &o.view.pile_contrast);
+  view.Read("pile_beyond_ratio", &o.view.pile_beyond_ratio);
+  view.Read("min_support", &o.view.min_support);
+  view.Read("min_walls", &o.view.min_walls);
+  if (!(o.view.bearing_margin >= 0.0)) view.Fail("bearing_margin", "must be 0 or more");
+  if (o.view.min_pile < 1) view.Fail("min_pile", "must be at least 1");
+  Positive(view, "pile_contrast", o.view.pile_contrast);
+  if (o.view.pile_beyond_ratio < 1) view.Fail("pile_beyond_ratio", "must be at least 1");
+  if (o.view.min_support < 1) view.Fail("min_support", "must be at least 1");
+  if (o.view.min_walls < 1) view.Fail("min_walls", "must be at least 1");
+
   Reader reg = r.Child("registration");
   reg.Read("last_seen_window", &o.registration.last_seen_window);
   reg.Read("max_angle", &o.registration.max_angle);
@@ -72,9 +104,11 @@ MapperOptions ReadMapperOptions(Reader& r) {
   cmp.Read("uncut_share", &o.comparison.uncut_share);
   cmp.Read("spread_scale", &o.comparison.spread_scale);
   cmp.Read("parallel_sin", &o.comparison.parallel_sin);
+  cmp.Read("pooled_std", &o.comparison.pooled_std);
   if (o.comparison.min_samples < 2) cmp.Fail("min_samples", "must be at least 2");
   Positive(cmp, "static_std", o.comparison.static_std);
   Positive(cmp, "spread_scale", o.comparison.spread_scale);
+  Positive(cmp, "pooled_std", o.comparison.pooled_std);
   if (!(o.comparison.parallel_sin > 0.0 && o.comparison.parallel_sin < 1.0)) {
     cmp.Fail("parallel_sin", "must be between 0 and 1");
   }

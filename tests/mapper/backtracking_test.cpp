@@ -33,7 +33,7 @@ class BackWall : public ::testing::Test {
   }
   int64_t Match(Vector2d a, Vector2d b) const {
     return MatchGlobal(Seen(a, b), geometry::Pose2{}, state_.store, state_.grouping, state_.world,
-                       state_.trajectory, {}, BacktrackOptions{});
+                       state_.trajectory, {}, BacktrackOptions{}, FitOptions{});
   }
   static constexpr int64_t kId = 14;
   MapperState state_;
@@ -84,7 +84,7 @@ class WallKnownByItsLine : public ::testing::Test {
   }
   int64_t Match(Vector2d a, Vector2d b) const {
     return MatchGlobal(Seen(a, b), geometry::Pose2{}, state_.store, state_.grouping, state_.world,
-                       state_.trajectory, {}, BacktrackOptions{});
+                       state_.trajectory, {}, BacktrackOptions{}, FitOptions{});
   }
   static constexpr int64_t kId = 7;
   MapperState state_;

@@ -7,10 +7,10 @@
 #include <cmath>
 
 #include "ideal_segmenter.hpp"
-#include "relplane/common/geometry.hpp"
 #include "localisation/pose_solver.hpp"
 #include "plane_store/observation.hpp"
 #include "plane_store/rltplane.hpp"
+#include "relplane/common/geometry.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -58,8 +58,9 @@ const Vector2d kEnd0{6, -1}, kEnd1{6, 1}, kLeft0{2, 1}, kLeft1{9, 1};
 
 TEST(Comparison, GrowingPlaneFindsItsStaticEdge) {
   // The left wall grows: its start (x = 2) is static, its far end moves out with the view.
-  Pair p = Build(kEnd0, kEnd1, kLeft0, kLeft1, 60, [](int) { return 0.0; },
-                 [](int k) { return 1.0 + 0.03 * k; });
+  Pair p = Build(
+      kEnd0, kEnd1, kLeft0, kLeft1, 60, [](int) { return 0.0; },
+      [](int k) { return 1.0 + 0.03 * k; });
   const Observation& oa = p.a.Latest();
   const DirectedStats& s = p.c.From(0);
   // A's edges: lo/hi along its direction; find which pairing with B's static edge was kept.
@@ -86,8 +87,9 @@ TEST(Comparison, GrowingPlaneFindsItsStaticEdge) {
 
 TEST(Comparison, ShrinkingPlaneFindsItsStaticEdge) {
   // The left wall shrinks: its far end (x = 9) is static, its near end is cut by the view.
-  Pair p = Build(kEnd0, kEnd1, kLeft0, kLeft1, 60, [](int k) { return 1.0 + 0.03 * k; },
-                 [](int) { return 7.0; });
+  Pair p = Build(
+      kEnd0, kEnd1, kLeft0, kLeft1, 60, [](int k) { return 1.0 + 0.03 * k; },
+      [](int) { return 7.0; });
   const DirectedStats& s = p.c.From(0);
   const Observation& ob = p.b.Latest();
   for (int i = 0; i < 2; ++i) {
@@ -141,7 +143,7 @@ TEST(Comparison, ParallelPlanesAcrossAreAmbiguous) {
   EXPECT_EQ(p.c.From(0).PairCount(0) + p.c.From(0).PairCount(1), 0.0);
   // The separation of the two lines is still known.
   double offset = 0.0;
-  ASSERT_TRUE(p.c.From(0).Line(0, &offset));
+  ASSERT_TRUE(p.c.From(0).Line(0, ComparisonOptions{}, &offset));
   EXPECT_NEAR(std::abs(offset), 2.0, 1e-9);
 }
 
@@ -180,7 +182,7 @@ TEST(Comparison, AParallelLineIsKeptWhileAShortPlaneFlickersInLength) {
     int lines = 0;
     for (int i = 0; i < 2; ++i) {
       double offset = 0.0;
-      if (!s.Line(i, &offset)) continue;
+      if (!s.Line(i, ComparisonOptions{}, &offset)) continue;
       ++lines;
       EXPECT_NEAR(std::abs(offset), 2.0, 1e-6);
     }
@@ -209,7 +211,7 @@ TEST(Comparison, ShortSubIntervalsThatDisagreeOnAParallelLineGiveNone) {
   for (int dir = 0; dir < 2; ++dir) {
     for (int i = 0; i < 2; ++i) {
       double offset = 0.0;
-      EXPECT_FALSE(p.c.From(dir).Line(i, &offset))
+      EXPECT_FALSE(p.c.From(dir).Line(i, ComparisonOptions{}, &offset))
           << "from plane " << dir << ", edge " << i << ": " << offset;
     }
   }
@@ -241,7 +243,7 @@ TEST(Comparison, PiecesOfOneWallWhoseEndsRideWithTheViewHaveNoStaticPairing) {
   EXPECT_FALSE(b.static_now[0] || b.static_now[1]);
   // Their lines still agree.
   double offset = 1.0;
-  ASSERT_TRUE(c.From(0).Line(0, &offset));
+  ASSERT_TRUE(c.From(0).Line(0, ComparisonOptions{}, &offset));
   EXPECT_NEAR(offset, 0.0, 1e-9);
 }
 
@@ -269,9 +271,9 @@ TEST(Comparison, AnEdgeCutByTheViewPlacesNoLineAcrossIt) {
   const Observation& last = a.Latest();
   const int at_jamb = last.cut[1] ? 1 : 0;
   double offset = 0.0;
-  EXPECT_FALSE(c.From(0).Line(at_jamb, &offset));
+  EXPECT_FALSE(c.From(0).Line(at_jamb, ComparisonOptions{}, &offset));
   // From the wall's real end (x = 2) the end wall's line is 4 m on.
-  ASSERT_TRUE(c.From(0).Line(1 - at_jamb, &offset));
+  ASSERT_TRUE(c.From(0).Line(1 - at_jamb, ComparisonOptions{}, &offset));
   EXPECT_NEAR(std::abs(offset), 4.0, 1e-6);
 }
 
@@ -331,7 +333,8 @@ TEST(RltPlane, BestOrientationWeightIsThatOfTheStoredObservations) {
     obs.rms = 0.002 + 0.001 * ((k * 13) % 7);
     plane.Add(obs);
     double best = 0.0;
-    for (const Observation& o : plane.Observations()) best = std::max(best, OrientationWeight(o));
+    for (const Observation& o : plane.Observations())
+      best = std::max(best, OrientationWeight(o, FitOptions{}));
     ASSERT_EQ(OrientationWeight(plane), best) << "iteration " << k;
   }
 }

@@ -59,6 +59,28 @@ TEST(LearnedFrustum, LearnsTheRangeLimitOnlyWhereCutEdgesPileUp) {
   EXPECT_FALSE(small_world.Clipped({5.99, 0.0}));
 }
 
+// The pile-up counts once a bin holds `view.min_pile` edges: before that the widest bearing
+// seen is the limit, so an edge well inside the border is not yet judged cut.
+TEST(LearnedFrustum, APileUpCountsFromTheSetNumberOfEdges) {
+  MapperOptions strict;
+  strict.view.min_pile = 40;
+  LearnedFrustum fewer, more(strict);
+  const double half = M_PI / 4.0;
+  for (int k = 0; k < 30; ++k) {  // 30 cut edges on the border, one noisy edge beyond it
+    for (LearnedFrustum* f : {&fewer, &more}) {
+      f->Observe(3.0 * Vector2d(std::cos(half), std::sin(half)));
+    }
+  }
+  for (LearnedFrustum* f : {&fewer, &more}) {
+    f->Observe(0.5 * Vector2d(std::cos(half + 0.2), std::sin(half + 0.2)));
+  }
+  EXPECT_NEAR(fewer.Limit(), half, 0.01);
+  EXPECT_NEAR(more.Limit(), half + 0.2, 1e-9);
+  const double inside = half - 0.02;
+  EXPECT_TRUE(fewer.Clipped(3.0 * Vector2d(std::cos(inside), std::sin(inside))));
+  EXPECT_FALSE(more.Clipped(3.0 * Vector2d(std::cos(inside), std::sin(inside))));
+}
+
 // A sensor turning in place sees one wall end at one distance for many frames, and that pile
 // can outgrow the range's (3.92 m against 5.92-5.98 m on a 6 m sensor). The range limit is the
 // farthest pile with next to nothing beyond it, not the fullest; a small world with the same

@@ -236,7 +236,6 @@ TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingSampledCoarsely
   state.first_iteration = 0;
   state.trajectory.poses[0] = {0.0, 0.0, 0.0};
   state.trajectory.fixed.insert(0);
-  state.angular_step = 0.5625 * M_PI / 180.0;  // a 90 degree view over 160 columns
   RltPlane a(0, seen({1, -1}, {4.9, -1}, 0.0, 0), 0.05, 1000);
   RltPlane l(1, seen({6, 1}, {1, 1}, 0.0, 0), 0.05, 1000);
   const int end = std::abs(a.Latest().edge[0].x() - 4.9) < 1e-6 ? 0 : 1;
@@ -258,7 +257,8 @@ TEST(GlobalMap, TheFirstGroupIsNotPlacedFromAnEndItsFirstSightingSampledCoarsely
                                  {{0, Placed(0.0, {0, 0}, end, Known::kPoint)},
                                   {1, Placed(l_alpha - a_alpha, across, -1, Known::kLine)}},
                                  0)};
-  BuildGlobalMap(GlobalInputs(state), 0, MapperOptions{}, state.grouping, state.world);
+  const double step = 0.5625 * M_PI / 180.0;  // a 90 degree view over 160 columns
+  BuildGlobalMap(GlobalInputs(state, step), 0, MapperOptions{}, state.grouping, state.world);
   ASSERT_TRUE(state.world.global.count(0));
   EXPECT_NEAR(state.world.global.at(0).point.x(), 5.0, 0.01);
   EXPECT_NEAR(state.world.global.at(0).point.y(), -1.0, 0.01);

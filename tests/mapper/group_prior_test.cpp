@@ -49,8 +49,9 @@ MapperState DrivingAlongX(int64_t last, int64_t last_fixed) {
 // Plane 0 (an end wall x = 4) and the others known by their ends (`ends`): group 0 maps the end
 // wall's line, group 1 (made at iteration `created`) knows it by its orientation only, so nothing
 // links group 1's position and its prior places it.
+// `angular_step`: rad between the sensor's rays as the mapper learnt it (0: not known).
 void PlaceByPriorOnly(MapperState* state, const Observation& end, int64_t created,
-                      const std::map<int64_t, Placement>& ends) {
+                      const std::map<int64_t, Placement>& ends, double angular_step = 0.0) {
   state->store.Plane(0)->groups = {0, 1};
   std::map<int64_t, Placement> relative = ends;
   for (const auto& [id, placed] : ends) state->store.Plane(id)->groups = {1};
@@ -59,7 +60,8 @@ void PlaceByPriorOnly(MapperState* state, const Observation& end, int64_t create
   state->grouping.groups = {Built(0, 0, {{0, end_line}}, 0), Built(1, created, relative, 1)};
   state->world.global = {{0, end_line}};
   state->world.placed_by = {{0, 0}};
-  BuildGlobalMap(GlobalInputs(*state), 1, MapperOptions{}, state->grouping, state->world);
+  BuildGlobalMap(GlobalInputs(*state, angular_step), 1, MapperOptions{}, state->grouping,
+                 state->world);
 }
 
 // PlaceByPriorOnly with group 1 made at iteration `created` knowing the far ends (x = 3) of the
@@ -492,7 +494,6 @@ TEST(GroupPrior, AShortPiecesLineMeasuredMetresAwayHardlyMovesThePrior) {
 std::pair<double, double> SidesPlacedFromEndsSeenEarlyAndLate(double step, double early_end) {
   const auto seen = SeenAlongXCut;
   MapperState state = DrivingAlongX(22, 22);
-  state.angular_step = step;
   const auto at = [](int64_t k) { return 0.1 * static_cast<double>(k); };
   RltPlane left(1, seen({-1, 1}, {early_end, 1}, at(4), 4, false), 0.05, 1000);
   RltPlane right(2, seen({-1, -1}, {early_end, -1}, at(4), 4, false), 0.05, 1000);
@@ -510,7 +511,8 @@ std::pair<double, double> SidesPlacedFromEndsSeenEarlyAndLate(double step, doubl
   state.store.planes.emplace(2, std::move(right));
   PlaceByPriorOnly(&state, end, 6,
                    {{1, Placed(left_alpha, {3, 1}, left_ref, Known::kPoint)},
-                    {2, Placed(right_alpha, {3, -1}, right_ref, Known::kPoint)}});
+                    {2, Placed(right_alpha, {3, -1}, right_ref, Known::kPoint)}},
+                   step);
   if (!state.world.global.count(1) || !state.world.global.count(2)) return {NAN, NAN};
   return {state.world.global.at(1).point.x(), state.world.global.at(2).point.x()};
 }

@@ -90,12 +90,13 @@ TEST(Localisation, AShortNoisyWallDoesNotTurnTheHeading) {
   std::vector<RltPlane> planes;
   std::vector<Sighting> sightings = WhereSeen(mapped, &planes);
   for (size_t k = 0; k < seen.size(); ++k) sightings[k].obs = &seen[k];
-  const PoseEstimate est = Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {});
+  const PoseEstimate est = Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {}, FitOptions{});
   // Unweighted, the jamb alone would turn the heading by a third of its error (1.7 degrees).
   EXPECT_LT(std::abs(est.pose.yaw), 0.1 * M_PI / 180.0);
   // Exact fits (no residual) still weigh the same: the circular mean of their differences.
   for (Observation& obs : seen) obs.rms = 0.0;
-  const PoseEstimate exact = Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {});
+  const PoseEstimate exact =
+      Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {}, FitOptions{});
   EXPECT_NEAR(exact.pose.yaw, std::atan2(-std::sin(jamb_error), 2.0 + std::cos(jamb_error)), 1e-9);
 }
 
@@ -107,7 +108,7 @@ TEST(Localisation, TheHeadingErrorOfAShortPieceIncludesItsBias) {
   auto heading_error = [](const std::vector<Observation>& seen) {
     std::vector<RltPlane> planes;
     const std::vector<Sighting> sightings = WhereSeen(seen, &planes);
-    return Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {}).yaw_sigma;
+    return Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {}, FitOptions{}).yaw_sigma;
   };
   Observation jamb = Seen(M_PI, 1.5, -0.075, 0.075, 1000, 0.005);   // 0.15 m, x = 1.5
   Observation wall = Seen(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005);  // 4 m, y = 1
@@ -134,7 +135,7 @@ PoseEstimate WithOneWallMappedOff(double mapped_off) {
   std::vector<RltPlane> planes;
   std::vector<Sighting> sightings = WhereSeen(seen, &planes);
   sightings[2].world.point.y() -= mapped_off;
-  return Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {});
+  return Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {}, FitOptions{});
 }
 
 TEST(Localisation, AWallMappedAPilastersDepthOffIsLeftOut) {
@@ -176,7 +177,7 @@ TEST(Localisation, AWallFixesThePositionWhereItsPointsAreNotWhereItsLineIsExtrap
   left_wall.known = Known::kLine;
   const std::vector<Sighting> sightings = {{&seen[0], &planes[0], end_wall},
                                            {&seen[1], &planes[1], left_wall}};
-  const PoseEstimate est = Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {});
+  const PoseEstimate est = Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {}, FitOptions{});
   EXPECT_NEAR(est.pose.x, 0.0, 0.002);
   EXPECT_NEAR(est.pose.y, 0.0, 0.002);
 }
@@ -252,7 +253,7 @@ struct OneWallEnd {
   }
   // The pose from a prediction at the origin, carried `predicted_for` iterations.
   PoseEstimate From(const LearnedFrustum& frustum, int predicted_for) const {
-    return Localise(sightings, geometry::Pose2{0.0, 0.0, 0.0}, frustum, {}, 0,
+    return Localise(sightings, geometry::Pose2{0.0, 0.0, 0.0}, frustum, {}, FitOptions{}, 0,
                     LearntVelocity(predicted_for, LocalisationOptions{}));
   }
   Observation seen, mapped;
@@ -369,12 +370,12 @@ TEST(Localisation, WithTheMotionKnownAnEndThatAloneFixesThePositionIsWeighedAgai
   ASSERT_LT(frustum.EdgeSpacing(view.left.edge[1], view.left.d), LocalisationOptions{}.edge_noise);
   const double w = EndWeight(frustum, view.left), prediction = 9.0;  // (3 cm / 1 cm)^2
   const geometry::Pose2 origin{0.0, 0.0, 0.0};
-  const PoseEstimate known =
-      Localise(view.sightings, origin, frustum, {}, 0, LearntVelocity(1, LocalisationOptions{}));
+  const PoseEstimate known = Localise(view.sightings, origin, frustum, {}, FitOptions{}, 0,
+                                      LearntVelocity(1, LocalisationOptions{}));
   EXPECT_EQ(known.status, PoseStatus::kTracking);
   EXPECT_NEAR(known.pose.x, 0.02 * w / (w + prediction), 1e-4);
   EXPECT_NEAR(known.pose.y, 0.0, 1e-6);
-  const PoseEstimate unknown = Localise(view.sightings, origin, frustum, {}, 0, {});
+  const PoseEstimate unknown = Localise(view.sightings, origin, frustum, {}, FitOptions{}, 0, {});
   EXPECT_EQ(unknown.status, PoseStatus::kTracking);
   EXPECT_NEAR(unknown.pose.x, 0.02, 1e-4);
 }
@@ -389,11 +390,11 @@ TEST(Localisation, WithTheMotionKnownAStaticEndFarFromThePredictionIsNotTheWalls
   const LearnedFrustum frustum = SampledFrustum();
   const HallwayEnd view(2.6, 1.95);
   const geometry::Pose2 origin{0.0, 0.0, 0.0};
-  const PoseEstimate known =
-      Localise(view.sightings, origin, frustum, {}, 0, LearntVelocity(30, LocalisationOptions{}));
+  const PoseEstimate known = Localise(view.sightings, origin, frustum, {}, FitOptions{}, 0,
+                                      LearntVelocity(30, LocalisationOptions{}));
   EXPECT_EQ(known.status, PoseStatus::kMotionModel);
   EXPECT_NEAR(known.pose.x, 0.0, 1e-6);
-  const PoseEstimate unknown = Localise(view.sightings, origin, frustum, {}, 0, {});
+  const PoseEstimate unknown = Localise(view.sightings, origin, frustum, {}, FitOptions{}, 0, {});
   EXPECT_EQ(unknown.status, PoseStatus::kTracking);
   EXPECT_NEAR(unknown.pose.x, 0.65, 1e-4);
 }
@@ -415,7 +416,7 @@ PoseEstimate FromAnEndSeenBefore(const LearnedFrustum& frustum, double end_x) {
   Sighting sighting{&seen, &planes[0], line};
   sighting.end_seen[far] = true;
   sighting.end[far] = {end_x, 1.0};
-  return Localise({sighting}, geometry::Pose2{0.0, 0.0, 0.0}, frustum, {}, 0, {});
+  return Localise({sighting}, geometry::Pose2{0.0, 0.0, 0.0}, frustum, {}, FitOptions{}, 0, {});
 }
 
 // A finely sampled end 2 m ahead shows the motion; one 4.8 m ahead at a grazing angle, sampled

@@ -181,7 +181,7 @@ TEST(MapCleanup, APieceAtACornerGoesOnceTheWallIsDrawnOnToTheCorner) {
   MergeDuplicateWalls(&merged_first);
   EXPECT_TRUE(Kept(merged_first, 2));
   std::vector<MappedPlane> planes = {wall, piece, crossing};
-  CleanUpWalls(&planes, PublishedMapOptions{});
+  CleanUpWalls(&planes, PublishedMapOptions{}, FitOptions{});
   EXPECT_FALSE(Kept(planes, 2));
   ASSERT_TRUE(Kept(planes, 1));
   EXPECT_NEAR(Wall(planes, 1).vertices[0].x(), 4.0, 1e-9);

@@ -25,7 +25,7 @@ Placement Line(const Observation& seen, const Vector2d& point) {
 // The heading information of one sighting as the solver weighs it: its fit's sigma (an exact
 // fit: the floor, 1 mrad) and a short piece's blur combined.
 double HeadingInformation(const Observation& obs) {
-  const double sigma = std::hypot(1e-3, PieceBlur(obs));
+  const double sigma = std::hypot(1e-3, PieceBlur(obs, FitOptions{}));
   return 1.0 / (sigma * sigma);
 }
 
@@ -37,8 +37,9 @@ TEST(PoseSolverInformation, TwoCrossingWallsFixBothDirectionsAndTheHeading) {
   const Observation b =
       *MakeObservation(testing::WallSeen(inv * Vector2d(0, 1), inv * Vector2d(4, 1)), 1, 0.3);
   const RltPlane pa(0, a, 0.05, 100), pb(1, b, 0.05, 100);
-  const PoseEstimate est = Localise({{&a, &pa, Line(a, {4, -1})}, {&b, &pb, Line(b, {0, 1})}},
-                                    {0.9, -0.4, 0.05}, LearnedFrustum{}, LocalisationOptions{});
+  const PoseEstimate est =
+      Localise({{&a, &pa, Line(a, {4, -1})}, {&b, &pb, Line(b, {0, 1})}}, {0.9, -0.4, 0.05},
+               LearnedFrustum{}, LocalisationOptions{}, FitOptions{});
   ASSERT_EQ(est.status, PoseStatus::kTracking);
   // The two lines' normals are the world's axes: one equation each, each good to the edge noise.
   const double unit = 1.0 / std::pow(LocalisationOptions{}.edge_noise, 2);  // m^-2
@@ -56,7 +57,7 @@ TEST(PoseSolverInformation, OneWallLeavesTheDirectionAlongItOpen) {
       *MakeObservation(testing::WallSeen(inv * Vector2d(0, 1), inv * Vector2d(4, 1)), 1, 0.3);
   const RltPlane pa(0, a, 0.05, 100);
   const PoseEstimate est = Localise({{&a, &pa, Line(a, {0, 1})}}, {0.9, -0.4, 0.0},
-                                    LearnedFrustum{}, LocalisationOptions{});
+                                    LearnedFrustum{}, LocalisationOptions{}, FitOptions{});
   ASSERT_EQ(est.status, PoseStatus::kMotionModel);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(est.position_information);
   EXPECT_NEAR(eig.eigenvalues()(0), 0.0, 1e-12);
@@ -67,7 +68,8 @@ TEST(PoseSolverInformation, OneWallLeavesTheDirectionAlongItOpen) {
 }
 
 TEST(PoseSolverInformation, NoWallNoInformation) {
-  const PoseEstimate est = Localise({}, {0.9, -0.4, 0.0}, LearnedFrustum{}, LocalisationOptions{});
+  const PoseEstimate est =
+      Localise({}, {0.9, -0.4, 0.0}, LearnedFrustum{}, LocalisationOptions{}, FitOptions{});
   EXPECT_EQ(est.status, PoseStatus::kLost);
   EXPECT_TRUE(est.position_information.isZero());
 }

@@ -126,6 +126,31 @@ TEST(Options, TheGlobalMapsAndRelativeMapsWeighingIsSettable) {
   std::remove(file.c_str());
 }
 
+TEST(Options, TheFitViewAndLengthModelsAreSettable) {
+  const std::string file = ::testing::TempDir() + "mapper_models.yaml";
+  std::ofstream(file) << "mapper:\n  fit: {orientation_floor: 0.002, piece_blur: 0.05}\n"
+                         "  rltplane: {noise_hysteresis: 2.5, smoothing: 7}\n"
+                         "  view: {bearing_margin: 0.05, min_pile: 30}\n"
+                         "  comparison: {pooled_std: 0.02}\n";
+  const MapperOptions o = LoadMapperOptions(file);
+  EXPECT_DOUBLE_EQ(o.fit.orientation_floor, 0.002);
+  EXPECT_DOUBLE_EQ(o.fit.piece_blur, 0.05);
+  EXPECT_DOUBLE_EQ(o.rltplane.noise_hysteresis, 2.5);
+  EXPECT_EQ(o.rltplane.smoothing, 7);
+  EXPECT_EQ(o.rltplane.full_length_sightings, RltPlaneOptions{}.full_length_sightings);
+  EXPECT_DOUBLE_EQ(o.view.bearing_margin, 0.05);
+  EXPECT_EQ(o.view.min_pile, 30);
+  EXPECT_DOUBLE_EQ(o.comparison.pooled_std, 0.02);
+  for (const char* bad :
+       {"fit: {piece_blur: 0}", "fit: {orientation_flor: 0.001}", "rltplane: {smoothing: 2}",
+        "rltplane: {retired_lengths: 1}", "view: {min_pile: 0}", "view: {pile_contrast: -1}",
+        "comparison: {pooled_std: 0}"}) {
+    std::ofstream(file) << "mapper:\n  " << bad << "\n";
+    EXPECT_THROW(LoadMapperOptions(file), config::ConfigError) << bad;
+  }
+  std::remove(file.c_str());
+}
+
 }  // namespace
 }  // namespace relplane::mapper
 

@@ -7,9 +7,9 @@
 
 namespace relplane::mapper {
 
-inline GlobalMapInputs GlobalInputs(const MapperState& state) {
-  return {state.store, state.comparisons, state.trajectory, state.first_iteration,
-          state.angular_step};
+// `angular_step` as LearnedFrustum::AngularStep (0: not known).
+inline GlobalMapInputs GlobalInputs(const MapperState& state, double angular_step = 0.0) {
+  return {state.store, state.comparisons, state.trajectory, state.first_iteration, angular_step};
 }
 
 inline RelativeMapInputs RelativeInputs(const MapperState& state) {

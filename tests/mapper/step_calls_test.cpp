@@ -32,7 +32,7 @@ RegistrationFrame FrameAt(int64_t k) {
 TEST(StepCalls, RegistrationMakesNewRltplanesAndLeavesThemToGrouping) {
   const MapperOptions options;
   MapperState state;
-  const LearnedFrustum frustum(options.localisation);
+  const LearnedFrustum frustum(options);
   const MotionModel motion(options.motion, options.localisation.max_step);
   std::vector<Observation> first = Corner(0);
   Registered r = RegisterPlanes(FrameAt(0), first, frustum, motion, options, state.grouping,
@@ -153,7 +153,7 @@ TEST(StepCalls, TheLocaliserTracksOnMappedWallsAndCoastsBrieflyWithoutThem) {
   PlaneStore store;
   WorldMap world;
   Trajectory trajectory;
-  const LearnedFrustum frustum(options.localisation);
+  const LearnedFrustum frustum(options);
   const MotionModel motion(options.motion, options.localisation.max_step);
   Localiser localiser(options);
 

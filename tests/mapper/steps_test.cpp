@@ -197,19 +197,19 @@ TEST(Localisation, TwoWallsGiveThePoseOneWallTheMotionModel) {
   LearnedFrustum frustum;
   LocalisationOptions options;
   const geometry::Pose2 previous{0.9, -0.4, 0.05};
-  PoseEstimate est =
-      Localise({{&a.Latest(), &a, pa}, {&b.Latest(), &b, pb}}, previous, frustum, options);
+  PoseEstimate est = Localise({{&a.Latest(), &a, pa}, {&b.Latest(), &b, pb}}, previous, frustum,
+                              options, FitOptions{});
   EXPECT_EQ(est.status, PoseStatus::kTracking);
   EXPECT_NEAR(est.pose.x, truth.x, 1e-6);
   EXPECT_NEAR(est.pose.y, truth.y, 1e-6);
   EXPECT_NEAR(est.pose.yaw, truth.yaw, 1e-9);
   // One wall: its distance and the orientation are kept, the rest from the previous pose.
-  est = Localise({{&a.Latest(), &a, pa}}, previous, frustum, options);
+  est = Localise({{&a.Latest(), &a, pa}}, previous, frustum, options, FitOptions{});
   EXPECT_EQ(est.status, PoseStatus::kMotionModel);
   EXPECT_NEAR(est.pose.yaw, truth.yaw, 1e-9);
   EXPECT_NEAR(est.pose.x, truth.x, 1e-3);  // wall x = 4 fixes x
   EXPECT_NEAR(est.pose.y, previous.y, 1e-3);
-  EXPECT_EQ(Localise({}, previous, frustum, options).status, PoseStatus::kLost);
+  EXPECT_EQ(Localise({}, previous, frustum, options, FitOptions{}).status, PoseStatus::kLost);
 }
 
 TEST(Localisation, AWallEndSeenFromAFixedPoseMovesThePositionAlongTheHeadingOnly) {
@@ -233,7 +233,8 @@ TEST(Localisation, AWallEndSeenFromAFixedPoseMovesThePositionAlongTheHeadingOnly
     seen.end_seen[e] = true;
     seen.end[e] = end;
     const geometry::Pose2 previous{0.0, 0.0, yaw};
-    const PoseEstimate est = Localise({seen}, previous, frustum, LocalisationOptions{});
+    const PoseEstimate est =
+        Localise({seen}, previous, frustum, LocalisationOptions{}, FitOptions{});
     EXPECT_EQ(est.status, PoseStatus::kMotionModel);
     EXPECT_NEAR(est.pose.y, 0.0, 1e-6);
     // Heading across the open direction the position along it stays: the platform drives
@@ -263,11 +264,11 @@ TEST(Localisation, AMappedWallEndTheViewDidNotShowDoesNotMoveThePosition) {
   placed.ref = e;
   placed.known = Known::kPoint;
   // Uncut, the end is taken: the sensor 6 cm further on than it is.
-  PoseEstimate est = Localise({{&seen_now, &wall, placed}}, truth, frustum, {});
+  PoseEstimate est = Localise({{&seen_now, &wall, placed}}, truth, frustum, {}, FitOptions{});
   ASSERT_EQ(est.status, PoseStatus::kMotionModel);
   ASSERT_NEAR(est.pose.x, truth.x + 0.06, 1e-6);
   seen_now.cut[e] = true;
-  est = Localise({{&seen_now, &wall, placed}}, truth, frustum, {});
+  est = Localise({{&seen_now, &wall, placed}}, truth, frustum, {}, FitOptions{});
   EXPECT_EQ(est.status, PoseStatus::kMotionModel);
   EXPECT_NEAR(est.pose.x, truth.x, 1e-6);
   EXPECT_NEAR(est.pose.y, truth.y, 1e-6);
@@ -306,7 +307,7 @@ PoseEstimate LocaliseInHallway(double x, const geometry::Pose2& previous, double
     seen.end_seen[e] = true;
     seen.end[e] = end;
   }
-  return Localise(sightings, previous, frustum, LocalisationOptions{}, held);
+  return Localise(sightings, previous, frustum, LocalisationOptions{}, FitOptions{}, held);
 }
 
 TEST(Localisation, AWallEndSeenPastItsCornerDoesNotSetTheHeldPositionBack) {
@@ -382,7 +383,8 @@ TEST(Localisation, WallsThatAllDisagreeKeepThePreviousPose) {
   }
   std::vector<Sighting> sightings;
   for (int k = 0; k < 4; ++k) sightings.push_back({&planes[k].Latest(), &planes[k], mapped[k]});
-  const PoseEstimate est = Localise(sightings, previous, LearnedFrustum{}, LocalisationOptions{});
+  const PoseEstimate est =
+      Localise(sightings, previous, LearnedFrustum{}, LocalisationOptions{}, FitOptions{});
   EXPECT_EQ(est.status, PoseStatus::kLost);
   EXPECT_NEAR(est.pose.x, previous.x, 1e-9);
   EXPECT_NEAR(est.pose.y, previous.y, 1e-9);

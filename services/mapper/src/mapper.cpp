@@ -22,7 +22,7 @@ namespace relplane::mapper {
 // The components and what the facade keeps of the frame sequence.
 struct Mapper::Steps {
   explicit Steps(const MapperOptions& options)
-      : frustum(options.localisation),
+      : frustum(options),
         motion(options.motion, options.localisation.max_step),
         localiser(options),
         pose{options.start_pose.x, options.start_pose.y, options.start_pose.yaw} {}
@@ -74,7 +74,6 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
     s.judged_range_limit = s.frustum.RangeLimit();
     MarkViewCuts(s.frustum, state.store, state.grouping);
   }
-  state.angular_step = s.frustum.AngularStep();  // for the groups' priors (group_prior.cpp)
 
   const RegistrationFrame frame{iteration, previous, s.pose, motion, s.localiser.Held()};
   // §II.A each plane to its rltplane, to the global map's (backtracking), or a new one.
@@ -90,9 +89,9 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   state.grouping.MarkDirty(
       CompareVisible(iteration, visible, options_, state.grouping, state.store, state.comparisons));
   // §II.D the next relative map, and the global map chained from it.
-  BuildNextGlobalMap(
-      {state.store, state.comparisons, state.trajectory, state.first_iteration, state.angular_step},
-      options_, state.grouping, state.world);
+  BuildNextGlobalMap({state.store, state.comparisons, state.trajectory, state.first_iteration,
+                      s.frustum.AngularStep()},
+                     options_, state.grouping, state.world);
   // §II.D-E the pose from the global map, and the loop it closes (§II.A end).
   PoseEstimate estimate =
       s.localiser.Localise({iteration, previous, s.pose, motion, &visible, state.first_iteration},

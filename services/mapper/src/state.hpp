@@ -20,9 +20,6 @@ struct MapperState {
   WorldMap world;
   Trajectory trajectory;
   int64_t first_iteration = -1;
-  // rad between the sensor's neighbouring rays as the mapper learnt it (LearnedFrustum), nought
-  // while not known: how finely a wall end was sampled.
-  double angular_step = 0.0;
 };
 
 }  // namespace relplane::mapper

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <deque>
 
-#include "relplane/common/geometry.hpp"
 #include "plane_store/observation.hpp"
+#include "relplane/common/geometry.hpp"
 
 namespace relplane::mapper {
 namespace {
@@ -19,24 +19,14 @@ Eigen::Matrix2d RotationT(double alpha) {
   return r;
 }
 
-// m: the segmenter's fit of a piece is known to about this over its length (as in the published
-// map's cleanup: a 0.2 m piece beside a jamb takes some of its points, a median 2.4 degrees off).
-constexpr double kShortPieceBlur = 0.03;
-
 }  // namespace
 
-double PieceBlurOfLength(double length) {
-  return std::atan2(kShortPieceBlur, std::max(length, 1e-3));
-}
-
-double PieceBlur(const Observation& obs) { return PieceBlurOfLength(obs.Length()); }
-
-ObservationTerms ComparisonTerms(const Observation& obs) {
+ObservationTerms ComparisonTerms(const Observation& obs, const FitOptions& fit) {
   ObservationTerms t;
   t.alpha = obs.Alpha();
   t.rotation_t = RotationT(t.alpha);
-  t.weight = OrientationWeight(obs);
-  t.blur = PieceBlur(obs);
+  t.weight = OrientationWeight(obs, fit);
+  t.blur = PieceBlur(obs, fit);
   return t;
 }
 
@@ -157,8 +147,8 @@ StaticVerdict Judge(const SubInterval& s, const ComparisonOptions& options) {
       // stands, and is not where the wall's end is mapped. A parallel line's offset does not
       // depend on where along the wall the edge is.
       if (!parallel && s.cut[2 * dir + i] > (1.0 - options.uncut_share) * n) continue;
-      if (Std1(s.line[dir][i], n) <= options.static_std && (motion >= options.min_motion ||
-                                                             parallel)) {
+      if (Std1(s.line[dir][i], n) <= options.static_std &&
+          (motion >= options.min_motion || parallel)) {
         v.stats[dir].line_sum[i] += s.line[dir][i][0];
         v.stats[dir].line_count[i] += n;
       }
@@ -190,9 +180,9 @@ StaticVerdict Judge(const SubInterval& s, const ComparisonOptions& options) {
   if (std_ij[best_i][best_j] > options.static_std) return v;
   // Pairings close to the best one are static too; one far above it has a slowly moving edge
   // (e.g. an edge occluded by a door jamb), however small its spread.
-  const double threshold = std::min(
-      options.static_std,
-      std::max(options.static_floor, options.static_ratio * std_ij[best_i][best_j]));
+  const double threshold =
+      std::min(options.static_std,
+               std::max(options.static_floor, options.static_ratio * std_ij[best_i][best_j]));
   low = 0;
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) low += std_ij[i][j] <= threshold ? 1 : 0;
@@ -270,14 +260,15 @@ double DirectedStats::PairStd(int i, int j) const {
   return std::sqrt(std::max(0.0, pair_sq[i][j] / pair_count[i][j] - mean.squaredNorm()));
 }
 
-bool DirectedStats::Line(int i, double* mean) const {
+bool DirectedStats::Line(int i, const ComparisonOptions& options, double* mean) const {
   if (line_count[i] > 0.0) {
     *mean = line_sum[i] / line_count[i];
     return true;
   }
-  if (short_line_count[i] < kMinPooled) return false;
+  if (short_line_count[i] < options.min_samples) return false;
   const double m = short_line_sum[i] / short_line_count[i];
-  if (std::sqrt(std::max(0.0, short_line_sq[i] / short_line_count[i] - m * m)) > kPooledStd) {
+  if (std::sqrt(std::max(0.0, short_line_sq[i] / short_line_count[i] - m * m)) >
+      options.pooled_std) {
     return false;
   }
   *mean = m;

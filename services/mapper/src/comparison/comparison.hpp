@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "relplane/mapper/options.hpp"
 #include "plane_store/rltplane.hpp"
+#include "relplane/mapper/options.hpp"
 
 namespace relplane::mapper {
 
@@ -31,14 +31,13 @@ struct DirectedStats {
   // no sub-interval reached ComparisonOptions::min_samples, and a hallway's end wall, parallel to
   // the jamb 3 m before it, was placed instead from a far wall end 3.3 cm short (the segmenter's
   // last column at a grazing angle), with the hallway's next leg 3.5 cm off. Read only where no
-  // judged sub-interval gave B's line, over kMinPooled samples in all, and only if the pieces
-  // agree to within kPooledStd (a recess's back wall taken for the jamb for a few iterations
+  // judged sub-interval gave B's line, over ComparisonOptions::min_samples in all, and only if
+  // the pieces agree to within ComparisonOptions::pooled_std (a recess's back wall taken for the
+  // jamb for a few iterations
   // is steady on its own).
   double short_line_sum[2];
   double short_line_sq[2];
   double short_line_count[2];
-  static constexpr double kMinPooled = 10.0;  // samples, as ComparisonOptions::min_samples
-  static constexpr double kPooledStd = 0.01;  // m: parallel fits' offsets agree to millimetres
 
   DirectedStats();
   void Add(const DirectedStats& other);
@@ -46,7 +45,7 @@ struct DirectedStats {
   // Standard deviation of a static pairing over all its sub-intervals together: an edge that
   // drifts slowly (occlusion) passes in each sub-interval but not over the whole interval.
   double PairStd(int i, int j) const;
-  bool Line(int i, double* mean) const;
+  bool Line(int i, const ComparisonOptions& options, double* mean) const;
   double PairCount(int i) const { return pair_count[i][0] + pair_count[i][1]; }
 };
 
@@ -80,7 +79,7 @@ struct SubInterval {
   double piece_information = 0.0;
   // [0]: B seen from A, [1]: A seen from B. Per pairing: x, y, x^2, y^2 sums.
   double pair[2][2][2][4] = {};
-  double npair[2][2] = {};  // samples of pairing [i][j] where neither edge was cut
+  double npair[2][2] = {};    // samples of pairing [i][j] where neither edge was cut
   double line[2][2][2] = {};  // [dir][edge][sum, sum^2]
   // Sensor-frame positions of A's and B's edges (x, y, x^2, y^2): did the sensor move at all?
   double edges[4][4] = {};
@@ -95,13 +94,7 @@ struct SubInterval {
 };
 
 // The terms of one observation (RltPlane keeps them with its observations).
-ObservationTerms ComparisonTerms(const Observation& obs);
-
-// rad: how far a piece's fitted orientation may be off whatever its points' spread says, a few
-// centimetres over its length (the segmenter gives a short piece some of its neighbour's points).
-double PieceBlur(const Observation& obs);
-// The same for a piece `length` metres long.
-double PieceBlurOfLength(double length);
+ObservationTerms ComparisonTerms(const Observation& obs, const FitOptions& fit);
 
 class Comparison {
  public:
@@ -110,8 +103,7 @@ class Comparison {
   // Brings the comparison up to iteration `now` from the planes' stored observations (§II.C).
   // Marks the edges found static in the interval that includes `now` on the planes, and marks a
   // plane seen whole where both its edges were static.
-  void Update(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options,
-              int max_gap);
+  void Update(RltPlane& a, RltPlane& b, int64_t now, const ComparisonOptions& options, int max_gap);
 
   int64_t A() const { return a_; }
   int64_t B() const { return b_; }

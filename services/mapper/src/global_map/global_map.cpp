@@ -25,7 +25,7 @@ using geometry::Pose2;
 // wall stands, `lever` metres along it from where its offset was measured: its fit's noise and a
 // short piece's orientation bias over the lever, against `global_map.full_line`.
 double LineWeight(double lever, double length, const MapperOptions& options) {
-  const double bias = PieceBlurOfLength(length);
+  const double bias = PieceBlurOfLength(length, options.fit);
   const double sigma = std::hypot(options.global_map.line_noise, lever * bias);
   const double full = options.global_map.full_line;
   return std::min(1.0, (full * full) / (sigma * sigma));
@@ -67,8 +67,8 @@ double SightingOrientationWeight(const RltPlane& plane, int64_t iteration) {
   const auto& all = plane.Observations();
   const size_t i = plane.LowerBound(iteration);
   if (i >= all.size() || all[i].iteration != iteration) return 0.0;
-  const double blur = PieceBlur(all[i]);
-  return 1.0 / (1.0 / OrientationWeight(all[i]) + blur * blur);
+  const ObservationTerms& terms = plane.Terms(i);  // OrientationWeight and PieceBlur
+  return 1.0 / (1.0 / terms.weight + terms.blur * terms.blur);
 }
 
 // Least squares for world <- group: rotation from the mean orientation difference, translation

@@ -79,7 +79,7 @@ SeenWall LineWhenMade(const GlobalMapInputs& in, Group& group, int64_t id,
     if (pose == in.trajectory.poses.end()) continue;
     const double offset_var = obs.support > 0 ? obs.rms * obs.rms / obs.support : 0.0;
     sights.push_back(
-        {SeenFrom(obs, pose->second), OrientationWeight(obs),
+        {SeenFrom(obs, pose->second), OrientationWeight(obs, options.fit),
          1.0 / (offset_var + options.global_map.pose_noise * options.global_map.pose_noise)});
   }
   const auto fuse = [&](const std::vector<bool>& use, SeenWall* out) {

@@ -48,8 +48,8 @@ struct Tie {
 // the anchor's tie to the next group is as loose as a jamb's, a loop's closing solve puts its
 // turn there, and every later group turns about it. Where the basis is a jamb, its own bias
 // keeps the tie loose: held as exact, a jamb's frame turns the next group by its fit's error.
-double OrientationSpread(const GlobalMapInputs& in, const Grouping& grouping, int64_t g,
-                         int64_t id) {
+double OrientationSpread(const GlobalMapInputs& in, const Grouping& grouping, int64_t g, int64_t id,
+                         const FitOptions& fit) {
   const Group& group = grouping.groups[static_cast<size_t>(g)];
   double information = 0.0;
   double common = 0.0;  // iterations of the basis's longest comparison
@@ -63,7 +63,7 @@ double OrientationSpread(const GlobalMapInputs& in, const Grouping& grouping, in
   double spread = information > 0.0 ? 1.0 / information : 0.0;
   const auto plane = in.store.planes.find(id);
   if (id == group.relative.basis && common > 0.0 && plane != in.store.planes.end()) {
-    const double blur = PieceBlurOfLength(plane->second.Length());
+    const double blur = PieceBlurOfLength(plane->second.Length(), fit);
     spread = std::min(spread, blur * blur / common);
   }
   return spread;
@@ -114,7 +114,7 @@ void LeverVariance(const std::vector<geometry::Pose2>& x, std::vector<Tie>* ties
 
 // Ties between consecutive groups (by index) holding the same rltplane with a known placement.
 std::vector<Tie> CollectTies(const GlobalMapInputs& in, const Grouping& grouping,
-                             double open_information) {
+                             double open_information, const FitOptions& fit) {
   std::vector<Tie> ties;
   for (const auto& [id, plane] : in.store.planes) {
     int previous = -1;
@@ -125,8 +125,8 @@ std::vector<Tie> CollectTies(const GlobalMapInputs& in, const Grouping& grouping
       if (previous >= 0 && previous != g) {
         Tie tie{previous, static_cast<int>(g), &grouping.groups[previous].relative.members.at(id),
                 &members.at(id), &plane};
-        tie.alpha_variance =
-            OrientationSpread(in, grouping, previous, id) + OrientationSpread(in, grouping, g, id);
+        tie.alpha_variance = OrientationSpread(in, grouping, previous, id, fit) +
+                             OrientationSpread(in, grouping, g, id, fit);
         ties.push_back(tie);
       }
       previous = static_cast<int>(g);
@@ -368,7 +368,7 @@ PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMa
   PoseGraphResult result;
   const int n = static_cast<int>(grouping.groups.size());
   if (n < 2) return result;
-  std::vector<Tie> ties = CollectTies(in, grouping, open_information);
+  std::vector<Tie> ties = CollectTies(in, grouping, open_information, mapper_options.fit);
   const std::vector<const PoseTie*> pose_ties = CurrentPoseTies(grouping, world);
   result.ties = static_cast<int>(ties.size() + pose_ties.size());
   // The priors are centred on each group's chained placement (§II.D), which a solve leaves as

@@ -76,7 +76,7 @@ bool PlaceLine(const Placement& p, int64_t from, int64_t to, const RelativeMapIn
   const double dalpha = c->DeltaAlpha(from);
   const bool parallel = std::abs(std::sin(dalpha)) < comparison.parallel_sin;
   double offset = 0.0;
-  bool ok = p.known == Known::kPoint && s.Line(p.ref, &offset);
+  bool ok = p.known == Known::kPoint && s.Line(p.ref, comparison, &offset);
   // A parallel line's offset is the same from either edge, but its steadiness is not: each
   // sample measures it along the member's fitted normal, from where the edge is, and a short
   // face's fit turning a degree moves it centimetres at an edge metres away. A door recess's
@@ -84,8 +84,9 @@ bool PlaceLine(const Placement& p, int64_t from, int64_t to, const RelativeMapIn
   // steady from the wall's other edge; judged from the reference edge alone it goes unplaced by
   // its parallel wall and is placed through a crossing wall's line from a few samples instead,
   // centimetres off.
-  if (!ok && p.known == Known::kPoint && parallel) ok = s.Line(1 - p.ref, &offset);
-  if (!ok && p.known == Known::kLine && parallel) ok = s.Line(0, &offset) || s.Line(1, &offset);
+  if (!ok && p.known == Known::kPoint && parallel) ok = s.Line(1 - p.ref, comparison, &offset);
+  if (!ok && p.known == Known::kLine && parallel)
+    ok = s.Line(0, comparison, &offset) || s.Line(1, comparison, &offset);
   if (!ok) return false;
   *out = Placement{};
   out->alpha = p.alpha + dalpha;

@@ -23,10 +23,8 @@ void LearnedFrustum::Observe(const Eigen::Vector2d& edge) {
 
 void LearnedFrustum::ObserveSampling(const Observation& obs) {
   // Walls with plenty of points only: a sliver's extent says little of its points' spacing.
-  constexpr int kMinSupport = 500;
-  constexpr int kSlices = 16;
-  constexpr int kMinObserved = 30;
-  if (obs.support < kMinSupport || !(obs.z_max > obs.z_min)) return;
+  constexpr int kSlices = 16;  // the rectangle's solid angle is summed over slices along it
+  if (obs.support < view_.min_support || !(obs.z_max > obs.z_min)) return;
   // The solid angle of the wall's rectangle between its edges and heights: over slices along
   // it, the bearing each spans times the sine of the elevation at its top less at its bottom.
   double omega = 0.0;
@@ -44,7 +42,7 @@ void LearnedFrustum::ObserveSampling(const Observation& obs) {
   if (bin < 0 || bin >= kStepBins) return;
   ++step_counts_[bin];
   ++steps_observed_;
-  if (steps_observed_ < kMinObserved || steps_observed_ % 16 != 0) return;
+  if (steps_observed_ < view_.min_walls || steps_observed_ % 16 != 0) return;
   // The median: a wall with a door, or partly hidden, spans more than its points cover.
   int below = 0;
   for (int b = 0; b < kStepBins; ++b) {
@@ -80,8 +78,9 @@ void LearnedFrustum::UpdateRangeLimit() {
   int beyond = 0;             // edges past the candidate pile
   for (int peak = max_range_bin_; peak >= 0; --peak) {
     if (peak + kSpread + 1 <= max_range_bin_) beyond += range_counts_[peak + kSpread + 1];
-    if (50 * beyond > observed_) return;  // no pile further in has next to nothing beyond it
-    if (range_counts_[peak] < kMinPile) continue;
+    if (view_.pile_beyond_ratio * beyond > observed_)
+      return;  // no pile further in has next to nothing beyond it
+    if (range_counts_[peak] < view_.min_pile) continue;
     int pile = 0, below = 0;
     for (int b = std::max(0, peak - kSpread); b <= std::min(kRangeBins - 1, peak + kSpread); ++b) {
       pile += range_counts_[b];
@@ -90,7 +89,8 @@ void LearnedFrustum::UpdateRangeLimit() {
       below += range_counts_[b];
     }
     const double below_per_bin = static_cast<double>(below) / kBelow;
-    if (range_counts_[peak] > 5.0 * below_per_bin && beyond <= pile / 50) {
+    if (range_counts_[peak] > view_.pile_contrast * below_per_bin &&
+        beyond <= pile / view_.pile_beyond_ratio) {
       // The farthest full bin may be the pile's upper flank (edge noise): its fullest bin is
       // where the range cuts.
       int mode = peak;
@@ -104,7 +104,7 @@ void LearnedFrustum::UpdateRangeLimit() {
 }
 
 double LearnedFrustum::Limit() const {
-  if (counts_[mode_bin_] < kMinPile) return max_bearing_;
+  if (counts_[mode_bin_] < view_.min_pile) return max_bearing_;
   return std::min(max_bearing_, (mode_bin_ + 1) * kBinWidth);
 }
 
@@ -113,7 +113,7 @@ double LearnedFrustum::RangeLimit() const { return range_limit_; }
 bool LearnedFrustum::Clipped(const Eigen::Vector2d& edge) const {
   // The edge's bearing is uncertain by its position noise over its range.
   const double range = edge.norm();
-  const double margin = kBearingMargin + std::atan2(edge_noise_, range);
+  const double margin = view_.bearing_margin + std::atan2(edge_noise_, range);
   if (std::abs(std::atan2(edge.y(), edge.x())) > Limit() - margin) return true;
   return range > RangeLimit() - edge_noise_ - 4 * kRangeBin;
 }
@@ -135,7 +135,7 @@ bool LearnedFrustum::Clipped(const Eigen::Vector2d& edge, const Eigen::Vector2d&
   const double normal = std::abs(t.x() * edge.y() - t.y() * edge.x());
   if (normal >= range) return false;
   const double gap = std::acos(normal / range) - std::atan2(along, normal);
-  return gap < kBearingMargin + std::atan2(edge_noise_, edge.norm());
+  return gap < view_.bearing_margin + std::atan2(edge_noise_, edge.norm());
 }
 
 }  // namespace relplane::mapper

@@ -24,9 +24,9 @@ namespace relplane::mapper {
 // end).
 class LearnedFrustum {
  public:
-  // `options.edge_noise` widens the margins an edge is judged cut within.
-  explicit LearnedFrustum(const LocalisationOptions& options = {})
-      : edge_noise_(options.edge_noise) {}
+  // `options.localisation.edge_noise` widens the margins an edge is judged cut within.
+  explicit LearnedFrustum(const MapperOptions& options = {})
+      : view_(options.view), edge_noise_(options.localisation.edge_noise) {}
 
   void Observe(const Eigen::Vector2d& edge);
   // The half field of view: the pile-up's upper bin edge once it stands out, else the widest.
@@ -48,13 +48,12 @@ class LearnedFrustum {
   double EdgeSpacing(const Eigen::Vector2d& edge, double d) const;
 
  private:
-  static constexpr double kBearingMargin = 0.035;  // rad (2 degrees)
-  static constexpr double kBinWidth = 0.0087;      // rad (0.5 degrees)
-  static constexpr int kBins = 362;                // up to pi
-  static constexpr double kRangeBin = 0.02;        // m
-  static constexpr int kRangeBins = 2500;          // up to 50 m
-  static constexpr int kMinPile = 20;
+  static constexpr double kBinWidth = 0.0087;  // rad (0.5 degrees)
+  static constexpr int kBins = 362;            // up to pi
+  static constexpr double kRangeBin = 0.02;    // m
+  static constexpr int kRangeBins = 2500;      // up to 50 m
   void UpdateRangeLimit();
+  ViewOptions view_;
   double edge_noise_;  // m (LocalisationOptions::edge_noise)
   double max_bearing_ = 0.0;
   int counts_[kBins] = {};

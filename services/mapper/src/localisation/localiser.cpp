@@ -6,6 +6,7 @@ namespace relplane::mapper {
 
 Localiser::Localiser(const MapperOptions& options)
     : options_(options.localisation),
+      fit_(options.fit),
       max_coast_(options.motion.max_coast),
       start_{options.start_pose.x, options.start_pose.y, options.start_pose.yaw} {}
 
@@ -44,7 +45,8 @@ PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const PlaneStore& 
           : Prediction{};
   bool ends_seen = false;
   auto localise = [&](const geometry::Pose2& previous) {
-    PoseEstimate est = mapper::Localise(sightings, previous, frustum, options_, held_, prediction);
+    PoseEstimate est =
+        mapper::Localise(sightings, previous, frustum, options_, fit_, held_, prediction);
     if (est.status != PoseStatus::kMotionModel || motion_known || ends_seen) return est;
     // The walls leave a direction open and the motion is not known (the start, moving off
     // after a turn on the spot; not while turning): the wall ends seen from poses the walls fixed
@@ -59,7 +61,7 @@ PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const PlaneStore& 
         if (seen.valid) x.end[e] = seen.edge[e];
       }
     }
-    return mapper::Localise(sightings, previous, frustum, options_, held_);
+    return mapper::Localise(sightings, previous, frustum, options_, fit_, held_);
   };
   PoseEstimate estimate = localise(frame.motion.predicted);
   // Odometry knows whether the sensor moved on while it turned; a learnt velocity does not.

@@ -46,6 +46,7 @@ class Localiser {
                                   const WorldMap& world, bool initializing) const;
 
   LocalisationOptions options_;
+  FitOptions fit_;
   int max_coast_;
   geometry::Pose2 start_;
   int held_ = 0;

@@ -61,15 +61,16 @@ bool Placed(const Sighting& x) { return x.world.known != Known::kAngle; }
 // weighted by how well each wall's fit fixes its orientation (a short noisy wall, a door jamb,
 // must not turn the heading of walls metres long). Its sigma combines the fit's and a short
 // piece's bias, which the points' spread does not show.
-Heading EstimateHeading(const std::vector<Sighting>& sightings, const std::vector<bool>& use) {
+Heading EstimateHeading(const std::vector<Sighting>& sightings, const std::vector<bool>& use,
+                        const FitOptions& fit) {
   Heading h;
   double s = 0.0, c = 0.0;
   for (size_t k = 0; k < sightings.size(); ++k) {
     if (!use[k]) continue;
-    const double w = OrientationWeight(*sightings[k].obs);
+    const double w = OrientationWeight(*sightings[k].obs, fit);
     const double d = sightings[k].world.alpha - sightings[k].obs->Alpha();
     s += w * std::sin(d), c += w * std::cos(d), ++h.walls;
-    const double sigma = std::hypot(1.0 / std::sqrt(w), PieceBlur(*sightings[k].obs));
+    const double sigma = std::hypot(1.0 / std::sqrt(w), PieceBlur(*sightings[k].obs, fit));
     h.information += 1.0 / (sigma * sigma);
   }
   if (h.walls == 0) return h;
@@ -313,8 +314,8 @@ Prediction LearntVelocity(int iterations, const LocalisationOptions& options) {
 }
 
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
-                      const LearnedFrustum& frustum, const LocalisationOptions& options, int held,
-                      const Prediction& prediction) {
+                      const LearnedFrustum& frustum, const LocalisationOptions& options,
+                      const FitOptions& fit, int held, const Prediction& prediction) {
   const MotionContext m{previous, frustum, options, held, prediction};
   PoseEstimate out;
   out.pose = previous;
@@ -322,7 +323,7 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
   int suspect = -1;           // the wall left out on trial, in the last round
   PoseEstimate with_suspect;  // the pose with it, kept unless the trial shows it off
   for (int round = 0; round < 3; ++round) {
-    const Heading heading = EstimateHeading(sightings, use);
+    const Heading heading = EstimateHeading(sightings, use, fit);
     if (heading.walls == 0) {
       // Every wall left out as an outlier of the first round's pose: that pose came from walls
       // that disagree by metres (a mis-registered wall), so it is not kept either.

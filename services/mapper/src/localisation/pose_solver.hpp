@@ -53,6 +53,6 @@ Prediction LearntVelocity(int iterations, const LocalisationOptions& options);
 // odometry), how far off it may be by now; unknown where `previous` is the last pose held.
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
                       const LearnedFrustum& frustum, const LocalisationOptions& options,
-                      int held = 0, const Prediction& prediction = {});
+                      const FitOptions& fit, int held = 0, const Prediction& prediction = {});
 
 }  // namespace relplane::mapper

@@ -11,7 +11,8 @@ namespace relplane::mapper {
 
 int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const PlaneStore& store,
                     const Grouping& grouping, const WorldMap& world, const Trajectory& trajectory,
-                    const std::set<int64_t>& taken, const BacktrackOptions& options) {
+                    const std::set<int64_t>& taken, const BacktrackOptions& options,
+                    const FitOptions& fit) {
   if (!options.enabled) return -1;
   const double alpha = geometry::WrapAngle(pose.yaw + obs.Alpha());
   const Eigen::Vector2d e0 = pose * obs.edge[0], e1 = pose * obs.edge[1];
@@ -28,7 +29,8 @@ int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const P
     // piece's). Otherwise a short piece across a door recess's corner, fitted several degrees off,
     // can take the line of the recess's back wall (known from a sliver beside it), and that wall
     // is then mapped along the hallway from the piece.
-    if (placed.known == Known::kLine && dalpha > options.line_max_angle + PieceBlur(obs)) continue;
+    if (placed.known == Known::kLine && dalpha > options.line_max_angle + PieceBlur(obs, fit))
+      continue;
     // And only to close a loop, once the group that placed it is frozen (§II.F: its sightings
     // dropped). Sooner, the new sightings join the old ones in its comparisons (§II.C): a
     // recess's back wall seen as a sliver from one leg and again from the corner a little later

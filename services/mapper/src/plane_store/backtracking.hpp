@@ -17,6 +17,7 @@ namespace relplane::mapper {
 // The mapped rltplane `obs` (seen from `pose`) matches, or -1. Rltplanes in `taken` are skipped.
 int64_t MatchGlobal(const Observation& obs, const geometry::Pose2& pose, const PlaneStore& store,
                     const Grouping& grouping, const WorldMap& world, const Trajectory& trajectory,
-                    const std::set<int64_t>& taken, const BacktrackOptions& options);
+                    const std::set<int64_t>& taken, const BacktrackOptions& options,
+                    const FitOptions& fit);
 
 }  // namespace relplane::mapper

@@ -82,8 +82,7 @@ double RayToLine(const Observation& obs, const Eigen::Vector2d& u) {
 
 }  // namespace
 
-void MarkOccludedEdges(std::vector<Observation>* observations,
-                       const RegistrationOptions& options) {
+void MarkOccludedEdges(std::vector<Observation>* observations, const RegistrationOptions& options) {
   auto& obs = *observations;
   // Each plane's view, as bearings from its first edge counter-clockwise: worked out once
   // rather than for every edge tested against it (four arctangents a pair, a tenth of the
@@ -125,10 +124,6 @@ void MarkOccludedEdges(std::vector<Observation>* observations,
   }
 }
 
-// rad: orientation sigma every wall has whatever its fit says (the map's own error), so the
-// best-fitting walls do not take all the weight.
-constexpr double kOrientationFloor = 0.001;
-
 double OrientationSigma(const Observation& obs) {
   if (obs.rms <= 0.0) return 0.0;
   if (obs.support < 3) return std::numeric_limits<double>::infinity();
@@ -136,10 +131,17 @@ double OrientationSigma(const Observation& obs) {
   return spread > 0.0 ? obs.rms / spread : std::numeric_limits<double>::infinity();
 }
 
-double OrientationWeight(const Observation& obs) {
-  const double sigma = std::min(OrientationSigma(obs), 1.0);
-  return 1.0 / (sigma * sigma + kOrientationFloor * kOrientationFloor);
+double PieceBlurOfLength(double length, const FitOptions& fit) {
+  return std::atan2(fit.piece_blur, std::max(length, 1e-3));
 }
 
+double PieceBlur(const Observation& obs, const FitOptions& fit) {
+  return PieceBlurOfLength(obs.Length(), fit);
+}
+
+double OrientationWeight(const Observation& obs, const FitOptions& fit) {
+  const double sigma = std::min(OrientationSigma(obs), 1.0);
+  return 1.0 / (sigma * sigma + fit.orientation_floor * fit.orientation_floor);
+}
 
 }  // namespace relplane::mapper

@@ -71,7 +71,6 @@ std::optional<Observation> MakeObservation(const PlaneInput& input, int64_t iter
 void MarkOccludedEdges(std::vector<Observation>* observations,
                        const RegistrationOptions& options = {});
 
-// Frame angle of a wall with unit 2D normal n.
 // The standard deviation (rad) of an observed wall's orientation from its own fit: a line
 // fitted to `support` points spread evenly over the visible length L with residual `rms` has
 // slope variance rms^2 / (support L^2 / 12). Zero for an exact fit (rms 0), infinite when there
@@ -79,9 +78,18 @@ void MarkOccludedEdges(std::vector<Observation>* observations,
 double OrientationSigma(const Observation& obs);
 
 // The weight 1 / (sigma^2 + floor^2) an observed wall's orientation gets from OrientationSigma,
-// with a floor (the map's own error) so the best-fitting walls do not take all the weight.
-double OrientationWeight(const Observation& obs);
+// with a floor (FitOptions::orientation_floor, the map's own error) so the best-fitting walls do
+// not take all the weight.
+double OrientationWeight(const Observation& obs, const FitOptions& fit);
 
+// rad: how far a piece's fitted orientation may be off whatever its points' spread says,
+// atan(FitOptions::piece_blur / length) (the segmenter gives a short piece some of its
+// neighbour's points).
+double PieceBlur(const Observation& obs, const FitOptions& fit);
+// The same for a piece `length` metres long.
+double PieceBlurOfLength(double length, const FitOptions& fit);
+
+// Frame angle of a wall with unit 2D normal n.
 inline double AlphaOf(const Eigen::Vector2d& n) { return std::atan2(n.x(), -n.y()); }
 // Unit 2D normal of a wall with frame angle alpha.
 inline Eigen::Vector2d NormalOf(double alpha) { return {std::sin(alpha), -std::cos(alpha)}; }

@@ -45,8 +45,9 @@ ClosingLoop Backtrack(const RegistrationFrame& frame, const std::vector<Observat
   }
   geometry::Pose2 pose = frame.motion.predicted;
   if (!sightings.empty()) {
-    pose =
-        Localise(sightings, frame.motion.predicted, frustum, options.localisation, frame.held).pose;
+    pose = Localise(sightings, frame.motion.predicted, frustum, options.localisation, options.fit,
+                    frame.held)
+               .pose;
   }
   std::set<int64_t> taken(match.begin(), match.end());
   taken.insert(also.begin(), also.end());
@@ -54,7 +55,7 @@ ClosingLoop Backtrack(const RegistrationFrame& frame, const std::vector<Observat
   for (size_t k = 0; k < observations.size(); ++k) {
     if (match[k] >= 0) continue;
     match[k] = MatchGlobal(observations[k], pose, store, grouping, world, trajectory, taken,
-                           options.backtrack);
+                           options.backtrack, options.fit);
     if (match[k] < 0) continue;
     taken.insert(match[k]);
     if (auto by = world.placed_by.find(match[k]); by != world.placed_by.end()) {
@@ -83,7 +84,7 @@ Registered Store(std::vector<Observation>& observations, const std::vector<int64
       const int64_t id = store.next_id++;
       store.planes.emplace(
           id, RltPlane(id, std::move(observations[k]), options.comparison.phase_hysteresis,
-                       options.max_observations));
+                       options.max_observations, options.rltplane, options.fit));
       out.created.push_back(id);
       visible.push_back(id);
     }

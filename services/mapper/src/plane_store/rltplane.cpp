@@ -10,20 +10,18 @@
 namespace relplane::mapper {
 namespace {
 
-constexpr size_t kFullLengthCap = 300;    // sightings the full length is the median of
-constexpr size_t kRetiredCap = 64;        // dropped whole sightings' lengths kept (thinned)
-constexpr size_t kSmoothing = 5;          // lengths averaged for the growth phase
-constexpr double kNoiseHysteresis = 3.0;  // length noise sigmas
-
 double Median3(double a, double b, double c) {
   return std::max(std::min(a, b), std::min(std::max(a, b), c));
 }
 
 }  // namespace
 
-RltPlane::RltPlane(int64_t id, Observation first, double phase_hysteresis, int max_observations)
+RltPlane::RltPlane(int64_t id, Observation first, double phase_hysteresis, int max_observations,
+                   const RltPlaneOptions& options, const FitOptions& fit)
     : id_(id),
       hysteresis_(phase_hysteresis),
+      options_(options),
+      fit_(fit),
       max_observations_(static_cast<size_t>(std::max(max_observations, 16))),
       first_seen_(first.iteration),
       z_min_(first.z_min),
@@ -41,12 +39,14 @@ void RltPlane::Add(Observation obs) {
   // The visible length's noise, from its second differences (zero for steady growth): the
   // mean absolute second difference of white noise is 1.95 sigma.
   recent_lengths_.push_back(raw_length);
-  if (recent_lengths_.size() > kSmoothing) recent_lengths_.erase(recent_lengths_.begin());
+  if (recent_lengths_.size() > static_cast<size_t>(options_.smoothing))
+    recent_lengths_.erase(recent_lengths_.begin());
   const size_t n = recent_lengths_.size();
   if (n >= 3) {
     const double second =
         std::abs(recent_lengths_[n - 1] - 2.0 * recent_lengths_[n - 2] + recent_lengths_[n - 3]);
-    length_noise_ += (second / 1.95 - length_noise_) / std::min<double>(count_, 50.0);
+    length_noise_ +=
+        (second / 1.95 - length_noise_) / std::min<double>(count_, options_.noise_window);
   }
   // §II.C growth tracking with hysteresis on the mean of the last few lengths, the hysteresis
   // at least a few times the length noise, so noise alone never turns a steady plane from
@@ -56,7 +56,7 @@ void RltPlane::Add(Observation obs) {
   double length = 0.0;
   for (double l : recent_lengths_) length += l;
   length /= static_cast<double>(n);
-  const double hysteresis = std::max(hysteresis_, kNoiseHysteresis * length_noise_);
+  const double hysteresis = std::max(hysteresis_, options_.noise_hysteresis * length_noise_);
   if (growing_) {
     if (length >= extreme_length_) {
       extreme_length_ = length;
@@ -89,7 +89,7 @@ void RltPlane::Add(Observation obs) {
   max_length_ = n == 3 ? confirmed : std::max(max_length_, confirmed);
   z_min_ = std::min(z_min_, obs.z_min);
   z_max_ = std::max(z_max_, obs.z_max);
-  terms_.push_back(ComparisonTerms(obs));
+  terms_.push_back(ComparisonTerms(obs, fit_));
   const double weight = terms_.back().weight;
   if (!std::isnan(weight)) {  // a NaN is never the largest (std::max keeps the other)
     while (!weight_max_.empty() && weight_max_.back().second <= weight) weight_max_.pop_back();
@@ -143,7 +143,7 @@ void RltPlane::Retire(double length) {
   // the stride doubles, so the sample stays spread evenly over all the dropped sightings.
   if (retired_count_++ % retired_stride_ != 0) return;
   retired_lengths_.push_back(static_cast<float>(length));
-  if (retired_lengths_.size() < kRetiredCap) return;
+  if (retired_lengths_.size() < static_cast<size_t>(options_.retired_lengths)) return;
   for (size_t i = 0; 2 * i < retired_lengths_.size(); ++i) {
     retired_lengths_[i] = retired_lengths_[2 * i];
   }
@@ -157,9 +157,9 @@ size_t RltPlane::LowerBound(int64_t iteration) const {
   const size_t n = observations_.size();
   if (n == 0 || observations_.back().iteration < iteration) return n;
   if (n == 1 || observations_[n - 2].iteration < iteration) return n - 1;
-  auto it = std::lower_bound(
-      observations_.begin(), observations_.end(), iteration,
-      [](const Observation& o, int64_t value) { return o.iteration < value; });
+  auto it =
+      std::lower_bound(observations_.begin(), observations_.end(), iteration,
+                       [](const Observation& o, int64_t value) { return o.iteration < value; });
   return static_cast<size_t>(it - observations_.begin());
 }
 
@@ -187,17 +187,16 @@ double RltPlane::Length() const {
     // far end along the wall. And an edge cut by the range stays put while the sensor turns in
     // place, so it passes for a static edge: those sightings are short. Either kind is a
     // minority of the sightings.
+    const size_t cap = static_cast<size_t>(options_.full_length_sightings);
     std::vector<double> lengths;
     capped_ = false;
-    for (auto r = full_ranges_.rbegin();
-         r != full_ranges_.rend() && lengths.size() < kFullLengthCap; ++r) {
-      for (size_t i = LowerBound(r->first);
-           i < observations_.size() && lengths.size() < kFullLengthCap; ++i) {
+    for (auto r = full_ranges_.rbegin(); r != full_ranges_.rend() && lengths.size() < cap; ++r) {
+      for (size_t i = LowerBound(r->first); i < observations_.size() && lengths.size() < cap; ++i) {
         if (observations_[i].iteration > r->second) break;
         if (lengths.empty()) capped_from_ = observations_[i].iteration;
         lengths.push_back(observations_[i].Length());
       }
-      if (r == full_ranges_.rbegin() && lengths.size() == kFullLengthCap) {
+      if (r == full_ranges_.rbegin() && lengths.size() == cap) {
         capped_ = true;
         capped_first_ = r->first;
       }

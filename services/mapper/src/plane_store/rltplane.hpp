@@ -9,8 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "relplane/common/geometry.hpp"
 #include "plane_store/observation.hpp"
+#include "relplane/common/geometry.hpp"
+#include "relplane/mapper/options.hpp"
 
 namespace relplane::mapper {
 
@@ -25,7 +26,9 @@ struct ObservationTerms {
 
 class RltPlane {
  public:
-  RltPlane(int64_t id, Observation first, double phase_hysteresis, int max_observations);
+  // `phase_hysteresis` and `max_observations` as in ComparisonOptions and MapperOptions.
+  RltPlane(int64_t id, Observation first, double phase_hysteresis, int max_observations,
+           const RltPlaneOptions& options = {}, const FitOptions& fit = {});
 
   int64_t Id() const { return id_; }
   // Appends an observation (iterations strictly increasing) and tracks growth (§II.C).
@@ -95,6 +98,8 @@ class RltPlane {
 
   int64_t id_;
   double hysteresis_;
+  RltPlaneOptions options_;
+  FitOptions fit_;
   size_t max_observations_;
   std::deque<Observation> observations_;
   std::deque<ObservationTerms> terms_;  // one per observation
@@ -106,15 +111,15 @@ class RltPlane {
   mutable bool full_dirty_ = false;
   mutable bool full_valid_ = false;  // full_length_ was computed from stored sightings
   // When full_length_ was last computed: the newest range alone gave it its sightings (the
-  // first kFullLengthCap of them from `capped_from_`, the first one counted), starting at
-  // `capped_first_`. A range that only grows at its end, as the one seen whole now does at
-  // every iteration, then leaves it as it is.
+  // first options_.full_length_sightings of them from `capped_from_`, the first one counted),
+  // starting at `capped_first_`. A range that only grows at its end, as the one seen whole now does
+  // at every iteration, then leaves it as it is.
   mutable bool capped_ = false;
   mutable int64_t capped_first_ = 0;
   mutable int64_t capped_from_ = 0;
-  // Lengths of whole sightings already dropped (bounded memory): a sample of at most 64, every
-  // retired_stride_-th one of the retired_count_ so far (Retire), so the full length still
-  // counts them.
+  // Lengths of whole sightings already dropped (bounded memory): a sample of at most
+  // options_.retired_lengths, every retired_stride_-th one of the retired_count_ so far (Retire),
+  // so the full length still counts them.
   std::vector<float> retired_lengths_;
   int64_t retired_stride_ = 1;
   int64_t retired_count_ = 0;

@@ -5,8 +5,8 @@
 #include <limits>
 #include <numeric>
 
-#include "published_map/box_grid.hpp"
 #include "comparison/comparison.hpp"
+#include "published_map/box_grid.hpp"
 #include "published_map/map_corners.hpp"
 
 namespace relplane::mapper {
@@ -27,9 +27,10 @@ Vector2d DirectionOf(const MappedPlane& m) {
 // The segmenter's fit of a short piece is only known to a few centimetres over its length
 // (PieceBlur: a 0.2 m piece beside a door jamb takes some of the jamb's points, a median 2.4
 // degrees off at 1 cm range noise, one in ten over 5 degrees; pieces over 1.2 m: 0.05 degrees).
-bool OnLine(const MappedPlane& line, const MappedPlane& other, const PublishedMapOptions& options) {
+bool OnLine(const MappedPlane& line, const MappedPlane& other, const PublishedMapOptions& options,
+            const FitOptions& fit) {
   const double length = (End(other, 1) - End(other, 0)).norm();
-  const double tolerance = std::max(options.merge_angle, PieceBlurOfLength(length));
+  const double tolerance = std::max(options.merge_angle, PieceBlurOfLength(length, fit));
   if (line.normal.dot(other.normal) < std::cos(tolerance)) return false;
   const Vector2d n = line.normal.head<2>();
   for (int e = 0; e < 2; ++e) {
@@ -75,7 +76,8 @@ void Extend(MappedPlane* wall, double s0, double s1, int64_t observations) {
 
 }  // namespace
 
-void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMapOptions& options) {
+void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMapOptions& options,
+                         const FitOptions& fit) {
   std::vector<MappedPlane>& planes = *planes_in;
   std::vector<bool> drop(planes.size(), false);
   // A wall lying inside another on the same line is the same wall seen as a second rltplane
@@ -85,7 +87,7 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMap
   // and lay inside it: both stayed on the map). Where each lies inside the other, the
   // better-observed one is kept.
   const auto inside = [&](const MappedPlane& a, const MappedPlane& b) {
-    if (!OnLine(b, a, options)) return false;
+    if (!OnLine(b, a, options, fit)) return false;
     const Vector2d t = DirectionOf(b);
     const double s0 = std::min(t.dot(End(b, 0)), t.dot(End(b, 1))) - options.merge_distance;
     const double s1 = std::max(t.dot(End(b, 0)), t.dot(End(b, 1))) + options.merge_distance;
@@ -93,8 +95,8 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMap
     for (int e = 0; e < 2; ++e) in = in && t.dot(End(a, e)) >= s0 && t.dot(End(a, e)) <= s1;
     return in;
   };
-  // b holds a only if a's ends lie within options.merge_distance of b's line and of b's extent along
-  // it, so within b's box widened by twice that (a diagonal wall's box corners).
+  // b holds a only if a's ends lie within options.merge_distance of b's line and of b's extent
+  // along it, so within b's box widened by twice that (a diagonal wall's box corners).
   const auto box_of = [](const MappedPlane& m, double margin) {
     Eigen::AlignedBox2d box(End(m, 0));
     box.extend(End(m, 1));
@@ -134,8 +136,8 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMap
     for (size_t i : todo) {
       for (size_t j : first ? near[i] : grid.Query(box_of(planes[i], 0.0))) {
         if (drop[i]) break;
-        if (j == i || drop[j] || !OnLine(planes[i], planes[j], options) ||
-            !OnLine(planes[j], planes[i], options)) {
+        if (j == i || drop[j] || !OnLine(planes[i], planes[j], options, fit) ||
+            !OnLine(planes[j], planes[i], options, fit)) {
           continue;
         }
         const bool i_better = planes[i].observations > planes[j].observations ||
@@ -178,7 +180,7 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMap
       size_t best = planes.size();
       double best_gap = std::numeric_limits<double>::infinity();
       for (size_t j = 0; j < planes.size(); ++j) {
-        if (j == i || drop[j] || !OnLine(planes[j], piece, options)) continue;
+        if (j == i || drop[j] || !OnLine(planes[j], piece, options, fit)) continue;
         const MappedPlane& wall = planes[j];
         const Vector2d t = DirectionOf(wall);
         const double lo = t.dot(End(wall, 0)), hi = t.dot(End(wall, 1));
@@ -192,7 +194,8 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMap
           if (wall.end_known[0]) continue;
           gap = lo - p1, g0 = p1, g1 = lo;
         }
-        if (gap >= best_gap || (gap > 0.0 && GapCrossed(planes, drop, j, i, g0, g1, options))) continue;
+        if (gap >= best_gap || (gap > 0.0 && GapCrossed(planes, drop, j, i, g0, g1, options)))
+          continue;
         best = j, best_gap = gap;
       }
       if (best == planes.size()) continue;
@@ -210,10 +213,11 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMap
   planes = std::move(kept);
 }
 
-void CleanUpWalls(std::vector<MappedPlane>* planes, const PublishedMapOptions& options) {
-  MergeDuplicateWalls(planes, options);
+void CleanUpWalls(std::vector<MappedPlane>* planes, const PublishedMapOptions& options,
+                  const FitOptions& fit) {
+  MergeDuplicateWalls(planes, options, fit);
   SnapEndsToCorners(planes, options.corner_radius, options);
-  MergeDuplicateWalls(planes, options);
+  MergeDuplicateWalls(planes, options, fit);
 }
 
 }  // namespace relplane::mapper

@@ -32,7 +32,7 @@ MapSnapshot PublishedMap(const MapperState& state, const MapperOptions& options)
     m.end_known[1] = placed.known == Known::kPoint && (placed.ref == 1 || m.both_ends_known);
     snapshot.planes.push_back(std::move(m));
   }
-  CleanUpWalls(&snapshot.planes, options.published_map);  // §II.D end
+  CleanUpWalls(&snapshot.planes, options.published_map, options.fit);  // §II.D end
   for (const Group& g : state.grouping.groups) {
     snapshot.groups.push_back({g.id, g.relative.basis, g.members});
   }

@@ -7,6 +7,42 @@
 
 namespace relplane::mapper {
 
+// How far the segmenter's fit of a wall can be trusted beyond what its residuals say: every
+// step that weighs an orientation (comparisons §II.C, group placement §II.D, the pose §II.E,
+// the published map's merge) uses the same model.
+struct FitOptions {
+  // rad: orientation sigma every wall has whatever its fit says (the map's own error), so the
+  // best-fitting walls do not take all the weight.
+  double orientation_floor = 0.001;
+  // m: a piece's fit is off by about this much over its length, so its orientation by
+  // atan(piece_blur / length) (a 0.2 m piece beside a door jamb takes some of the jamb's points).
+  double piece_blur = 0.03;
+};
+
+// How an rltplane follows its visible length (§II.C: growth phases, the plane's maximum size).
+struct RltPlaneOptions {
+  // length-noise sigmas: a change smaller than this (or comparison.phase_hysteresis) never
+  // turns the plane from growing to shrinking.
+  double noise_hysteresis = 3.0;
+  int smoothing = 5;      // sightings whose visible lengths are averaged for the phase (>= 3)
+  int noise_window = 50;  // sightings the length noise is averaged over
+  int full_length_sightings = 300;  // whole sightings the full length is the median of
+  int retired_lengths = 64;         // lengths of dropped whole sightings kept (a thinned sample)
+};
+
+// The sensor's view as the mapper learns it from the edges and walls reported (§II.C: an edge
+// cut by the view is not a wall's end). The histograms' resolution (0.5 degree, 2 cm) is fixed.
+struct ViewOptions {
+  double bearing_margin = 0.035;  // rad: an edge this close inside the learnt field of view is cut
+  int min_pile = 20;  // edges in one bearing (or range) bin before a pile-up there counts
+  // A range pile counts where its peak holds pile_contrast times the mean bin of the 0.5 m below
+  // it, and at most one edge in pile_beyond_ratio lies beyond it.
+  double pile_contrast = 5.0;
+  int pile_beyond_ratio = 50;
+  int min_support = 500;  // points: thinner walls say too little of the angular step
+  int min_walls = 30;     // walls observed before the angular step is learnt
+};
+
 // §II.A plane matching on the latest untransformed observation.
 struct RegistrationOptions {
   int last_seen_window = 5;        // iterations; a plane unseen longer cannot match
@@ -73,6 +109,9 @@ struct ComparisonOptions {
   double spread_scale = 0.005;
   // sin of the angle: two lines this close in orientation are parallel in a relative map
   double parallel_sin = 0.17;
+  // m: a parallel piece's line pooled over sub-intervals too short to judge (min_samples in all)
+  // is read only if its offsets agree this closely (parallel fits agree to millimetres).
+  double pooled_std = 0.01;
 };
 
 // §II.D placing a group on the global map: its prior (its members as seen around when it was
@@ -224,6 +263,9 @@ struct StartPose {
 };
 
 struct MapperOptions {
+  FitOptions fit;
+  RltPlaneOptions rltplane;
+  ViewOptions view;
   RegistrationOptions registration;
   BacktrackOptions backtrack;
   GroupingOptions grouping;
