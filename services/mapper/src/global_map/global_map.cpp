@@ -1,35 +1,24 @@
 #include "global_map/global_map.hpp"
 
-#include <Eigen/Dense>
-#include <Eigen/Sparse>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <vector>
 
 #include "comparison/comparison.hpp"
+#include "global_map/global_orientations.hpp"
+#include "global_map/group_placement.hpp"
 #include "global_map/group_prior.hpp"
 #include "global_map/pose_graph.hpp"
 #include "global_map/relative_map.hpp"
-#include "localisation/least_squares.hpp"
 #include "localisation/pose_solver.hpp"
 
 namespace relplane::mapper {
 namespace {
 
-using Eigen::Matrix2d;
 using Eigen::Vector2d;
 using geometry::Pose2;
-
-// How much a line placed in a relative map by its orientation (Known::kLine) counts where the
-// wall stands, `lever` metres along it from where its offset was measured: its fit's noise and a
-// short piece's orientation bias over the lever, against `global_map.full_line`.
-double LineWeight(double lever, double length, const MapperOptions& options) {
-  const double bias = PieceBlurOfLength(length, options.fit);
-  const double sigma = std::hypot(options.global_map.line_noise, lever * bias);
-  const double full = options.global_map.full_line;
-  return std::min(1.0, (full * full) / (sigma * sigma));
-}
 
 // Does the plane's first sighting show the end `ref` its relative map starts from? Only if the
 // latest uncut sighting of that end from a known pose lies where the first one did. A wall seen
@@ -49,148 +38,6 @@ bool FirstSightingShowsEnd(const Trajectory& trajectory, const RltPlane& plane,
     return std::abs(t.dot(pose->second * obs.edge[ref] - first.edge[ref])) <= agreement;
   }
   return true;  // nothing seen since contradicts it
-}
-
-struct Link {
-  Placement relative;
-  Placement global;
-  const RltPlane* plane;
-  // rad^-2: how well `global`'s orientation is known where it is one sighting (the first
-  // group's); 0: as well as the plane's best fit (OrientationWeight).
-  double orientation_weight = 0.0;
-};
-
-// The orientation weight of a plane's sighting at `iteration`: its fit's noise and, as a single
-// fit is not averaged over an interval, a short piece's bias over its length (PieceBlur). 0 when
-// the observation is gone.
-double SightingOrientationWeight(const RltPlane& plane, int64_t iteration) {
-  const auto& all = plane.Observations();
-  const size_t i = plane.LowerBound(iteration);
-  if (i >= all.size() || all[i].iteration != iteration) return 0.0;
-  const ObservationTerms& terms = plane.Terms(i);  // OrientationWeight and PieceBlur
-  return 1.0 / (1.0 / terms.weight + terms.blur * terms.blur);
-}
-
-// Least squares for world <- group: rotation from the mean orientation difference, translation
-// from the links' lines (1 equation each) and shared static edges (1 more along the wall).
-Pose2 Solve(const std::vector<Link>& links, const Prior& prior_in, const MapperOptions& options) {
-  const double prior_weight = options.localisation.prior_weight;
-  const Pose2& prior = prior_in.pose;
-  double s = 0.0, c = 0.0;
-  for (const Link& l : links) {
-    // Weighted by how well each wall's fit fixes its orientation, as in localisation: a door
-    // jamb must not turn a group of walls metres long.
-    const double w =
-        l.orientation_weight > 0.0 ? l.orientation_weight : OrientationWeight(*l.plane);
-    const double d = l.global.alpha - l.relative.alpha;
-    s += w * std::sin(d), c += w * std::cos(d);
-  }
-  const double yaw = links.empty() ? prior.yaw : std::atan2(s, c);
-  const Matrix2d rot = Eigen::Rotation2Dd(yaw).toRotationMatrix();
-  // A link's two lines are compared where the wall is (its latest sighting, as the pose then
-  // put it), not at the point of the group's line: that is the foot of the perpendicular from
-  // the edge the line was measured from (relative_map.cpp PlaceLine), which may lie metres along
-  // the line, where the two lines' slightly different orientations part. `guess` is the
-  // translation that looks the wall up in the group's frame: centimetres off move the point by
-  // as much along the line, where the lines nearly agree.
-  // Each line is weighed by how well its offset is known where the wall is: its fit's noise, and
-  // a short piece's orientation bias (3 cm over its length) carried over the distance from the
-  // edge it was measured from. A line known within `global_map.full_line` counts fully, as every
-  // line did: a short pilaster side, fitted a degree off and measured from a recess corner metres
-  // along its line, is centimetres off where it stands, and once it is its group's link it decides
-  // the group's position along a hallway (the static edge that decided it before is only used where
-  // the lines leave a direction open), moving the group and the pose back by as much.
-  auto lines_at = [&](const Vector2d& guess, Matrix2d* a, Vector2d* b) {
-    *a = Matrix2d::Zero();
-    *b = Vector2d::Zero();
-    for (const Link& l : links) {
-      if (l.relative.known == Known::kAngle || l.global.known == Known::kAngle) continue;
-      const Vector2d n = NormalOf(l.global.alpha);
-      Vector2d at = l.relative.point;
-      double weight = 1.0;
-      if (l.relative.known == Known::kLine && l.plane->latest_pose_known) {
-        const Observation& latest = l.plane->Latest();
-        const Vector2d wall = l.plane->latest_pose * (0.5 * (latest.edge[0] + latest.edge[1]));
-        const Vector2d d = DirectionOf(l.relative.alpha);
-        const double lever = d.dot(rot.transpose() * (wall - guess) - l.relative.point);
-        at += d * lever;
-        weight = LineWeight(lever, l.plane->Length(), options);
-      }
-      *a += weight * n * n.transpose();
-      *b += weight * n * n.dot(l.global.point - rot * at);
-    }
-  };
-  Matrix2d a;
-  Vector2d b;
-  lines_at(prior.Translation(), &a, &b);
-  if (Eigen::SelfAdjointEigenSolver<Matrix2d>(a).eigenvalues()(0) >= 0.5) {
-    lines_at(a.ldlt().solve(b), &a, &b);  // once more from where the lines put the group
-  }
-  // The prior only decides a direction the links leave open; along the directions its members'
-  // lines span, those lines as seen with the heading the links give, its ends' placement along
-  // the rest.
-  Vector2d prior_t = prior.Translation();
-  if (!prior_in.lines.empty()) {
-    Matrix2d la = Matrix2d::Zero();
-    Vector2d lb = Vector2d::Zero();
-    for (const PriorLine& line : prior_in.lines) {
-      const Vector2d n = NormalOf(yaw + line.member.alpha);
-      // Weighed as the links' lines are: a door jamb's line, placed through a comparison with the
-      // room's far wall where the two cross metres away, is centimetres off where the jamb
-      // stands; counted as fully as the room's side walls, it moves the group, the pose and the
-      // room's walls across the room when the group's basis changes. A direction only such
-      // lines span, below `localisation.open_information`, is left to the ends' placement.
-      double weight = 1.0;
-      if (line.member.known == Known::kLine) {
-        const Vector2d d = DirectionOf(line.member.alpha);
-        const double lever =
-            d.dot(rot.transpose() * (line.seen_point - prior.Translation()) - line.member.point);
-        weight = LineWeight(lever, line.length, options);
-      }
-      la += weight * n * n.transpose();
-      lb += weight * n * n.dot(line.seen_point - rot * line.member.point);
-    }
-    prior_t = SolveWithPrior(la, lb, prior_t, 0.0, 0.0, options.localisation.open_information);
-  }
-  // Lines are exact whatever the edges do; static edges are added only where the lines leave
-  // a direction open (parallel walls), since an edge taken for static may not quite be. One
-  // link's edge each, unless some agree with the prior along their wall and others lie more
-  // than `global_map.edge_gate` from it: those are dropped. Where one link's piece in the group's
-  // relative map is paired at the wrong end (a hallway wall whose end next to a recess is taken for
-  // its far end), the two edges of a group's links put it a wall's length apart, and their mean
-  // moves the group and the pose half that along the hallway in one iteration.
-  Eigen::SelfAdjointEigenSolver<Matrix2d> eig(a);
-  if (eig.eigenvalues()(0) < 0.5) {
-    struct EdgeTie {
-      Vector2d along;        // the wall's direction
-      Vector2d translation;  // the group's translation the edge puts it at
-    };
-    std::vector<EdgeTie> ties;
-    for (const Link& l : links) {
-      if (l.relative.known == Known::kAngle || l.global.known == Known::kAngle) continue;
-      for (int e = 0; e < 2; ++e) {
-        Vector2d rel_point, global_point;
-        if (!EdgePoint(*l.plane, l.global, e, &global_point) ||
-            !EdgePoint(*l.plane, l.relative, e, &rel_point)) {
-          continue;
-        }
-        ties.push_back({DirectionOf(l.global.alpha), global_point - rot * rel_point});
-        break;
-      }
-    }
-    auto agrees = [&](const EdgeTie& tie) {
-      return std::abs(tie.along.dot(tie.translation - prior_t)) <= options.global_map.edge_gate;
-    };
-    const bool any_agrees = std::any_of(ties.begin(), ties.end(), agrees);
-    for (const EdgeTie& tie : ties) {
-      if (any_agrees && !agrees(tie)) continue;
-      a += tie.along * tie.along.transpose();
-      b += tie.along * tie.along.dot(tie.translation);
-    }
-  }
-  const Vector2d t =
-      SolveWithPrior(a, b, prior_t, prior_weight, 0.5, options.localisation.open_information);
-  return {t.x(), t.y(), yaw};
 }
 
 Placement Apply(const Pose2& pose, const Placement& p) {
@@ -362,7 +209,7 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
     }
     if (link_replaced)
       RefineGlobalOrientations(in, grouping, refined_from, options.global_map, world);
-    std::vector<Link> links;
+    std::vector<GroupLink> links;
     for (const auto& [id, rel] : group.relative.members) {
       auto it = world.global.find(id);
       if (it != world.global.end()) links.push_back({rel, it->second, in.store.Plane(id)});
@@ -407,7 +254,7 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
                          SightingOrientationWeight(*plane, seen.iteration)});
       }
     }
-    group.placement = Solve(links, prior, options);
+    group.placement = SolveGroupPlacement(links, prior, options);
     group.chained = group.placement;
     group.has_chained = true;
     PlaceMembers(in, group, options, world);
@@ -432,83 +279,6 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
   }
   RefineGlobalOrientations(in, grouping, refine_from, options.global_map, world);
   world.changed = true;
-}
-
-void RefineGlobalOrientations(const GlobalMapInputs& in, const Grouping& grouping, size_t from,
-                              const GlobalMapOptions& options, WorldMap& world) {
-  // Least squares on the corrections from the chained orientations, as RefineOrientations does
-  // within a group, over every comparison between two planes on the global map; the first
-  // group's planes are held (§II.D: it is placed from the start pose). Hard chaining (§II.D)
-  // gives a wall its orientation from the one group that placed it, through that group's
-  // comparisons only. A group made at a door holds the walls of the next room and, of the room
-  // it leaves, only the short pieces beside the door, whose fits are off by a degree or more
-  // towards the door, mirrored on its two sides (a piece takes some of the jamb's points): where
-  // it holds more pieces of one side (both pieces of the wall and one jamb, the other jamb in the
-  // group before), the next room's walls come out a fraction of a degree off, and every later
-  // group and pose with them. The other side's comparisons with those walls are there, in other
-  // groups, and balance them. Anchored at the chained values rather than at the last solution,
-  // so solving again after every placement does not walk the orientations away (as
-  // pose_graph.cpp's priors).
-  // The planes placed before `from` were not re-placed: they are held as last solved.
-  // Called before every re-placed group is solved (BuildGlobalMap): the cost follows those
-  // groups, not the map, and sorted vectors stand in for trees.
-  std::vector<int64_t> ids;
-  for (size_t g = std::max<size_t>(from, 1); g < grouping.groups.size(); ++g) {
-    for (const auto& [id, rel] : grouping.groups[g].relative.members) {
-      const auto by = world.placed_by.find(id);
-      if (by == world.placed_by.end() || static_cast<size_t>(by->second) != g) continue;
-      if (world.chained_alpha.count(id)) ids.push_back(id);
-    }
-  }
-  std::sort(ids.begin(), ids.end());
-  const int n = static_cast<int>(ids.size());
-  if (n == 0) return;
-  auto index_of = [&](int64_t id) {
-    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
-    return it != ids.end() && *it == id ? static_cast<int>(it - ids.begin()) : -1;
-  };
-  // A solved plane from its chained orientation, a held one as it stands.
-  auto value = [&](int64_t id, int k) {
-    return k >= 0 ? world.chained_alpha.at(id) : world.global.at(id).alpha;
-  };
-  // Sparse: a plane is compared only with the members of its groups (§II.C).
-  std::vector<PairKey> pairs;
-  for (int64_t id : ids) {
-    for (int64_t g : in.store.Plane(id)->groups) {
-      for (int64_t other : grouping.groups[g].members) {
-        if (other != id) pairs.push_back(KeyOf(id, other));
-      }
-    }
-  }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  std::vector<Eigen::Triplet<double>> a;
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
-  for (const PairKey& key : pairs) {
-    const Comparison* cmp = in.comparisons.Find(key.first, key.second);
-    if (cmp == nullptr || !world.global.count(key.first) || !world.global.count(key.second)) {
-      continue;
-    }
-    const double w = cmp->PieceInformation();
-    if (w <= 0.0) continue;
-    const int x = index_of(key.first), y = index_of(key.second);
-    const double r = geometry::WrapAngle(value(key.second, y) - value(key.first, x) -
-                                         cmp->PieceAlpha(key.first));
-    if (y >= 0) a.emplace_back(y, y, w), b(y) -= w * r;
-    if (x >= 0) a.emplace_back(x, x, w), b(x) += w * r;
-    if (x >= 0 && y >= 0) a.emplace_back(x, y, -w), a.emplace_back(y, x, -w);
-  }
-  // A weak prior at the chained value: the gauge of planes no comparison ties to the held ones.
-  for (int k = 0; k < n; ++k) a.emplace_back(k, k, options.chained_orientation_prior);
-  Eigen::SparseMatrix<double> h(n, n);
-  h.setFromTriplets(a.begin(), a.end());  // duplicates are summed
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(h);
-  if (solver.info() != Eigen::Success) return;
-  const Eigen::VectorXd dx = solver.solve(b);
-  if (!dx.allFinite()) return;
-  for (int k = 0; k < n; ++k) {
-    world.global.at(ids[k]).alpha = geometry::WrapAngle(value(ids[k], k) + dx(k));
-  }
 }
 
 }  // namespace relplane::mapper

@@ -40,14 +40,4 @@ void WallEnds(const Trajectory& trajectory, const RltPlane& plane, const Placeme
 void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions& options,
                     Grouping& grouping, WorldMap& world);
 
-// Soft-linked orientations (the paper's future work, §V): each global plane's orientation from
-// every comparison between planes on the global map, not only those of the group that placed
-// it, the first group's planes held. A wall first seen through a door is placed by a group whose
-// only comparisons with the walls already mapped are short pieces beside the door, fitted off
-// the same way on one side; a later group holding the jamb on the other side balances them.
-// Only the planes groups `from`, `from + 1`, ... placed are solved, against the others as they
-// stand: the map grows with the run while what one iteration re-places does not.
-void RefineGlobalOrientations(const GlobalMapInputs& in, const Grouping& grouping, size_t from,
-                              const GlobalMapOptions& options, WorldMap& world);
-
 }  // namespace relplane::mapper
