@@ -78,8 +78,8 @@ void LearnedFrustum::UpdateRangeLimit() {
   int beyond = 0;             // edges past the candidate pile
   for (int peak = max_range_bin_; peak >= 0; --peak) {
     if (peak + kSpread + 1 <= max_range_bin_) beyond += range_counts_[peak + kSpread + 1];
-    if (view_.pile_beyond_ratio * beyond > observed_)
-      return;  // no pile further in has next to nothing beyond it
+    // No pile further in has next to nothing beyond it.
+    if (view_.pile_beyond_ratio * beyond > observed_) return;
     if (range_counts_[peak] < view_.min_pile) continue;
     int pile = 0, below = 0;
     for (int b = std::max(0, peak - kSpread); b <= std::min(kRangeBins - 1, peak + kSpread); ++b) {

@@ -39,8 +39,9 @@ void RltPlane::Add(Observation obs) {
   // The visible length's noise, from its second differences (zero for steady growth): the
   // mean absolute second difference of white noise is 1.95 sigma.
   recent_lengths_.push_back(raw_length);
-  if (recent_lengths_.size() > static_cast<size_t>(options_.smoothing))
+  if (recent_lengths_.size() > static_cast<size_t>(options_.smoothing)) {
     recent_lengths_.erase(recent_lengths_.begin());
+  }
   const size_t n = recent_lengths_.size();
   if (n >= 3) {
     const double second =
