@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "group_fixtures.hpp"
 #include "ideal_segmenter.hpp"
 #include "localisation/pose_solver.hpp"
 #include "plane_store/observation.hpp"
@@ -16,15 +17,6 @@ namespace relplane::mapper {
 namespace {
 
 using Eigen::Vector2d;
-
-// The part [s0, s1] (metres from `a` towards `b`) of the wall a-b seen from `pose`.
-Observation See(const geometry::Pose2& pose, Vector2d a, Vector2d b, double s0, double s1,
-                int64_t iteration) {
-  const geometry::Pose2 inv = pose.Inverse();
-  const Vector2d t = (b - a).normalized();
-  const Vector2d p0 = inv * (a + s0 * t), p1 = inv * (a + s1 * t);
-  return *MakeObservation(testing::WallSeen(p0, p1), iteration, 0.3);
-}
 
 struct Pair {
   RltPlane a;
@@ -37,11 +29,11 @@ template <class Lo, class Hi>
 Pair Build(Vector2d a0, Vector2d a1, Vector2d b0, Vector2d b1, int n, Lo lo, Hi hi) {
   ComparisonOptions options;
   auto pose = [](int k) { return geometry::Pose2{0.03 * k, 0.0, 0.0}; };
-  Pair p{RltPlane(0, See(pose(0), a0, a1, 0, (a1 - a0).norm(), 0), 0.05, 1000),
-         RltPlane(1, See(pose(0), b0, b1, lo(0), hi(0), 0), 0.05, 1000)};
+  Pair p{RltPlane(0, testing::PartSeen(pose(0), a0, a1, 0, (a1 - a0).norm(), 0), 0.05, 1000),
+         RltPlane(1, testing::PartSeen(pose(0), b0, b1, lo(0), hi(0), 0), 0.05, 1000)};
   for (int k = 1; k < n; ++k) {
-    p.a.Add(See(pose(k), a0, a1, 0, (a1 - a0).norm(), k));
-    p.b.Add(See(pose(k), b0, b1, lo(k), hi(k), k));
+    p.a.Add(testing::PartSeen(pose(k), a0, a1, 0, (a1 - a0).norm(), k));
+    p.b.Add(testing::PartSeen(pose(k), b0, b1, lo(k), hi(k), k));
   }
   p.c.Update(p.a, p.b, n - 1, options, 5);
   return p;
@@ -123,12 +115,12 @@ TEST(Comparison, GrowingThenShrinkingSplitsTheInterval) {
 Pair AcrossTheHallway(double far_rate) {
   const Vector2d r0{2, -1}, r1{12, -1};
   ComparisonOptions options;
-  Pair p{RltPlane(0, See({0, 0, 0}, kLeft0, {12, 1}, 0.0, 3.0, 0), 0.05, 1000),
-         RltPlane(1, See({0, 0, 0}, r0, r1, 0.0, 3.0, 0), 0.05, 1000)};
+  Pair p{RltPlane(0, testing::PartSeen({0, 0, 0}, kLeft0, {12, 1}, 0.0, 3.0, 0), 0.05, 1000),
+         RltPlane(1, testing::PartSeen({0, 0, 0}, r0, r1, 0.0, 3.0, 0), 0.05, 1000)};
   for (int k = 1; k < 60; ++k) {
     const geometry::Pose2 pose{0.03 * k, 0, 0};
-    p.a.Add(See(pose, kLeft0, {12, 1}, 0.0, 3.0 + far_rate * k, k));
-    p.b.Add(See(pose, r0, r1, 0.0, 3.0 + far_rate * k, k));
+    p.a.Add(testing::PartSeen(pose, kLeft0, {12, 1}, 0.0, 3.0 + far_rate * k, k));
+    p.b.Add(testing::PartSeen(pose, r0, r1, 0.0, 3.0 + far_rate * k, k));
   }
   p.c.Update(p.a, p.b, 59, options, 5);
   return p;
@@ -199,12 +191,12 @@ TEST(Comparison, ShortSubIntervalsThatDisagreeOnAParallelLineGiveNone) {
   auto jamb = [&](int k) {
     const double x = (k / 6) % 2 == 0 ? 4.0 : 4.3;
     const double len = (k / 6) % 2 == 0 ? 0.3 : 0.15;
-    return See(pose(k), {x, -1.3}, {x, -1.0}, 0.0, len, k);
+    return testing::PartSeen(pose(k), {x, -1.3}, {x, -1.0}, 0.0, len, k);
   };
-  Pair p{RltPlane(0, See(pose(0), kEnd0, kEnd1, 0, 2, 0), 0.05, 1000),
+  Pair p{RltPlane(0, testing::PartSeen(pose(0), kEnd0, kEnd1, 0, 2, 0), 0.05, 1000),
          RltPlane(1, jamb(0), 0.05, 1000)};
   for (int k = 1; k < 60; ++k) {
-    p.a.Add(See(pose(k), kEnd0, kEnd1, 0, 2, k));
+    p.a.Add(testing::PartSeen(pose(k), kEnd0, kEnd1, 0, 2, k));
     p.b.Add(jamb(k));
   }
   p.c.Update(p.a, p.b, 59, options, 5);
@@ -228,8 +220,10 @@ TEST(Comparison, PiecesOfOneWallWhoseEndsRideWithTheViewHaveNoStaticPairing) {
   const Vector2d w0{2, 1}, w1{20, 1};
   ComparisonOptions options;
   auto pose = [](int k) { return geometry::Pose2{0.05 * k, 0, 0}; };
-  auto near = [&](int k) { return See(pose(k), w0, w1, 0.0, 0.05 * k + 2.0, k); };
-  auto far = [&](int k) { return See(pose(k), w0, w1, 0.05 * k + 2.4, 0.05 * k + 5.6, k); };
+  auto near = [&](int k) { return testing::PartSeen(pose(k), w0, w1, 0.0, 0.05 * k + 2.0, k); };
+  auto far = [&](int k) {
+    return testing::PartSeen(pose(k), w0, w1, 0.05 * k + 2.4, 0.05 * k + 5.6, k);
+  };
   RltPlane a(0, near(0), 0.05, 1000);
   RltPlane b(1, far(0), 0.05, 1000);
   for (int k = 1; k < 40; ++k) {
@@ -255,16 +249,16 @@ TEST(Comparison, AnEdgeCutByTheViewPlacesNoLineAcrossIt) {
   ComparisonOptions options;
   auto pose = [](int k) { return geometry::Pose2{0.03 * k, 0.0, 0.0}; };
   auto left = [&](int k) {
-    Observation obs = See(pose(k), kLeft0, kLeft1, 0.0, 3.0, k);
+    Observation obs = testing::PartSeen(pose(k), kLeft0, kLeft1, 0.0, 3.0, k);
     const int at_jamb = (pose(k) * obs.edge[1]).x() > (pose(k) * obs.edge[0]).x() ? 1 : 0;
     obs.cut[at_jamb] = true;
     return obs;
   };
   RltPlane a(0, left(0), 0.05, 1000);
-  RltPlane b(1, See(pose(0), kEnd0, kEnd1, 0, 2, 0), 0.05, 1000);
+  RltPlane b(1, testing::PartSeen(pose(0), kEnd0, kEnd1, 0, 2, 0), 0.05, 1000);
   for (int k = 1; k < 60; ++k) {
     a.Add(left(k));
-    b.Add(See(pose(k), kEnd0, kEnd1, 0, 2, k));
+    b.Add(testing::PartSeen(pose(k), kEnd0, kEnd1, 0, 2, k));
   }
   Comparison c(0, 1);
   c.Update(a, b, 59, options, 5);
@@ -280,12 +274,12 @@ TEST(Comparison, AnEdgeCutByTheViewPlacesNoLineAcrossIt) {
 TEST(Comparison, LeavingAndReenteringStartsANewSubInterval) {
   // B is out of view for 20 iterations in the middle; the comparison must not bridge the gap.
   ComparisonOptions options;
-  RltPlane a(0, See({0, 0, 0}, kEnd0, kEnd1, 0, 2, 0), 0.05, 1000);
-  RltPlane b(1, See({0, 0, 0}, kLeft0, kLeft1, 0, 1, 0), 0.05, 1000);
+  RltPlane a(0, testing::PartSeen({0, 0, 0}, kEnd0, kEnd1, 0, 2, 0), 0.05, 1000);
+  RltPlane b(1, testing::PartSeen({0, 0, 0}, kLeft0, kLeft1, 0, 1, 0), 0.05, 1000);
   for (int k = 1; k < 80; ++k) {
     const geometry::Pose2 pose{0.03 * k, 0, 0};
-    a.Add(See(pose, kEnd0, kEnd1, 0, 2, k));
-    if (k < 30 || k >= 50) b.Add(See(pose, kLeft0, kLeft1, 0, 1.0 + 0.03 * k, k));
+    a.Add(testing::PartSeen(pose, kEnd0, kEnd1, 0, 2, k));
+    if (k < 30 || k >= 50) b.Add(testing::PartSeen(pose, kLeft0, kLeft1, 0, 1.0 + 0.03 * k, k));
   }
   Comparison c(0, 1);
   c.Update(a, b, 79, options, 5);
@@ -307,13 +301,14 @@ TEST(Comparison, AnIterationWithAPoorFitCountsForLittleInTheOrientation) {
   const double off = 3.0 * M_PI / 180.0;
   const Vector2d sliver_end = kLeft0 + 0.1 * Vector2d(std::cos(off), std::sin(off));
   ComparisonOptions options;
-  RltPlane a(0, fitted(See({0, 0, 0}, kEnd0, kEnd1, 0, 2, 0), 2.0), 0.05, 1000);
-  RltPlane b(1, fitted(See({0, 0, 0}, kLeft0, sliver_end, 0, 0.1, 0), 0.1), 0.05, 1000);
+  RltPlane a(0, fitted(testing::PartSeen({0, 0, 0}, kEnd0, kEnd1, 0, 2, 0), 2.0), 0.05, 1000);
+  RltPlane b(1, fitted(testing::PartSeen({0, 0, 0}, kLeft0, sliver_end, 0, 0.1, 0), 0.1), 0.05,
+             1000);
   for (int k = 1; k < 20; ++k) {
     const geometry::Pose2 pose{0.03 * k, 0, 0};
-    a.Add(fitted(See(pose, kEnd0, kEnd1, 0, 2, k), 2.0));
-    b.Add(k < 10 ? fitted(See(pose, kLeft0, sliver_end, 0, 0.1, k), 0.1)
-                 : fitted(See(pose, kLeft0, kLeft1, 0, 2, k), 2.0));
+    a.Add(fitted(testing::PartSeen(pose, kEnd0, kEnd1, 0, 2, k), 2.0));
+    b.Add(k < 10 ? fitted(testing::PartSeen(pose, kLeft0, sliver_end, 0, 0.1, k), 0.1)
+                 : fitted(testing::PartSeen(pose, kLeft0, kLeft1, 0, 2, k), 2.0));
   }
   Comparison c(0, 1);
   c.Update(a, b, 19, options, 5);
@@ -326,9 +321,9 @@ TEST(RltPlane, BestOrientationWeightIsThatOfTheStoredObservations) {
   // The weight is kept as observations are added and dropped (a sliding-window maximum): it
   // must be the largest weight among those stored, not among all ever seen. The fit quality
   // goes up and down so the best one is dropped again and again.
-  RltPlane plane(0, See({0, 0, 0}, kEnd0, kEnd1, 0, 2, 0), 0.05, 16);  // 16 kept
+  RltPlane plane(0, testing::PartSeen({0, 0, 0}, kEnd0, kEnd1, 0, 2, 0), 0.05, 16);  // 16 kept
   for (int k = 1; k < 200; ++k) {
-    Observation obs = See({0.01 * k, 0, 0}, kEnd0, kEnd1, 0, 2, k);
+    Observation obs = testing::PartSeen({0.01 * k, 0, 0}, kEnd0, kEnd1, 0, 2, k);
     obs.support = 500 + (k * 37) % 400;
     obs.rms = 0.002 + 0.001 * ((k * 13) % 7);
     plane.Add(obs);
@@ -347,7 +342,7 @@ TEST(RltPlane, FullLengthKeptWhileItsRangeGrowsIsTheOneWorkedOutAfresh) {
   // thinned sample) the kept value must follow, as the fresh one does.
   const auto sighting = [](int k) {
     const double noise = 0.004 * std::sin(0.7 * k) + 0.003 * std::cos(1.3 * k);
-    return See({0.01 * k, 0, 0}, kEnd0, kEnd1, 0, 2 + noise, k);
+    return testing::PartSeen({0.01 * k, 0, 0}, kEnd0, kEnd1, 0, 2 + noise, k);
   };
   RltPlane asked(0, sighting(0), 0.05, 400), fresh(0, sighting(0), 0.05, 400);
   for (int k = 1; k < 700; ++k) {

@@ -8,6 +8,7 @@
 
 #include "ideal_segmenter.hpp"
 #include "plane_store/observation.hpp"
+#include "relplane/common/geometry.hpp"
 #include "state.hpp"
 
 namespace relplane::mapper::testing {
@@ -30,6 +31,14 @@ inline Group Built(int64_t id, int64_t created, const std::map<int64_t, Placemen
   group.relative.basis = basis;
   group.relative.members = relative;
   return group;
+}
+
+// The part [s0, s1] (metres from `a` towards `b`) of the wall a-b seen from `pose`.
+inline Observation PartSeen(const geometry::Pose2& pose, const Eigen::Vector2d& a,
+                            const Eigen::Vector2d& b, double s0, double s1, int64_t iteration) {
+  const geometry::Pose2 inv = pose.Inverse();
+  const Eigen::Vector2d t = (b - a).normalized();
+  return *MakeObservation(WallSeen(inv * (a + s0 * t), inv * (a + s1 * t)), iteration, 0.3);
 }
 
 // A wall from a to b as seen from (x, 0) facing along x, at iteration k.

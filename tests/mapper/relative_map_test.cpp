@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "group_fixtures.hpp"
 #include "ideal_segmenter.hpp"
 #include "relplane/common/geometry.hpp"
 #include "state_parts.hpp"
@@ -16,15 +17,6 @@ namespace relplane::mapper {
 namespace {
 
 using Eigen::Vector2d;
-
-// The part [s0, s1] (metres from `a` towards `b`) of the wall a-b seen from `pose`.
-Observation See(const geometry::Pose2& pose, Vector2d a, Vector2d b, double s0, double s1,
-                int64_t iteration) {
-  const geometry::Pose2 inv = pose.Inverse();
-  const Vector2d t = (b - a).normalized();
-  return *MakeObservation(testing::WallSeen(inv * (a + s0 * t), inv * (a + s1 * t)), iteration,
-                          0.3);
-}
 
 // The end wall x = 6, the left wall y = 1 from x = 2 and the right wall y = -1 from x = 1, both
 // running into the end wall's corners, each seen whole while the sensor drives along +x from
@@ -37,9 +29,9 @@ struct Hallway {
   explicit Hallway(int n) {
     auto pose = [](int k) { return geometry::Pose2{0.03 * k, 0.0, 0.0}; };
     const auto see_all = [&](int k, std::vector<Observation>* out) {
-      out->push_back(See(pose(k), end0, end1, 0.0, 2.0, k));
-      out->push_back(See(pose(k), left0, left1, 0.0, 4.0, k));
-      out->push_back(See(pose(k), right0, right1, 0.0, 5.0, k));
+      out->push_back(testing::PartSeen(pose(k), end0, end1, 0.0, 2.0, k));
+      out->push_back(testing::PartSeen(pose(k), left0, left1, 0.0, 4.0, k));
+      out->push_back(testing::PartSeen(pose(k), right0, right1, 0.0, 5.0, k));
     };
     std::vector<Observation> first;
     see_all(0, &first);
