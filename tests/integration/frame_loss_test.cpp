@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <regex>
 #include <relplane/plane_set_t.hpp>
 #include <relplane/point_cloud_t.hpp>
 #include <thread>
@@ -22,9 +21,8 @@ std::string Scenario() { return SourceDir() + "/scenarios/straight_hallway.yaml"
 
 // The first integer after `pattern` (a regex ending just before the number) in `text`, or -1.
 long Number(const std::string& text, const std::string& pattern) {
-  std::smatch match;
-  if (!std::regex_search(text, match, std::regex(pattern + "(-?\\d+)"))) return -1;
-  return std::stol(match[1]);
+  const std::vector<std::string> match = RegexSearch(text, pattern + "(-?\\d+)");
+  return match.empty() ? -1 : std::stol(match[1]);
 }
 
 TEST(FrameLoss, MapperKeepsTrackingAtTwentyPercentLoss) {
@@ -52,7 +50,8 @@ TEST(FrameLoss, MapperKeepsTrackingAtTwentyPercentLoss) {
   EXPECT_EQ(mapper_dropped, sim_dropped) << "the mapper sees the gaps\n" << metrics;
   EXPECT_EQ(Number(metrics, "\"lost\": "), 0) << metrics;
   EXPECT_EQ(Number(metrics, "\"missed\": "), Number(metrics, "\"partly_mapped\": "))
-      << "every expected wall has a match\n" << metrics;
+      << "every expected wall has a match\n"
+      << metrics;
   EXPECT_NE(metrics.find("\"expect_pass\": true"), std::string::npos) << metrics << output;
 }
 

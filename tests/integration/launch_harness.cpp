@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -153,6 +154,16 @@ std::string SourceDir() { return RELPLANE_SOURCE_DIR; }
 
 std::string TestBusUrl(int port) {
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
+}
+
+std::vector<std::string> RegexSearch(const std::string& text, const std::string& pattern) {
+  std::smatch match;
+  if (!std::regex_search(text, match, std::regex(pattern))) return {};
+  return std::vector<std::string>(match.begin(), match.end());
+}
+
+std::string RegexEscape(const std::string& text) {
+  return std::regex_replace(text, std::regex(R"([.^$|()\[\]{}*+?\\])"), "\\$&");
 }
 
 }  // namespace relplane::testing

@@ -64,4 +64,12 @@ std::string SourceDir();
 // A udpm URL on `port`, for tests that each own one.
 std::string TestBusUrl(int port);
 
+// The first match of the regular expression `pattern` (ECMAScript) in `text`: the whole match
+// then each group, or nothing when none matches. The tests search with this rather than
+// std::regex itself because each source that instantiates std::regex costs about 5 s of -O3.
+std::vector<std::string> RegexSearch(const std::string& text, const std::string& pattern);
+
+// `text` with the characters a regular expression reads as operators escaped.
+std::string RegexEscape(const std::string& text);
+
 }  // namespace relplane::testing

@@ -9,7 +9,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <regex>
 #include <thread>
 
 #include "launch_harness.hpp"
@@ -22,9 +21,8 @@ const std::vector<std::string> kArgs = {SourceDir() + "/scenarios/straight_hallw
                                         "launch.restart={max_restarts: 1, services: [mapper]}"};
 
 double Ate(const std::string& metrics) {
-  std::smatch match;
-  if (!std::regex_search(metrics, match, std::regex("\"ate_rmse_m\": ([-+0-9.eE]+)"))) return -1;
-  return std::stod(match[1]);
+  const std::vector<std::string> match = RegexSearch(metrics, "\"ate_rmse_m\": ([-+0-9.eE]+)");
+  return match.empty() ? -1 : std::stod(match[1]);
 }
 
 long FileSize(const std::string& path) {
@@ -70,9 +68,8 @@ TEST(MapperResume, KilledMapperResumesFromItsJournal) {
   ASSERT_EQ(launcher.Wait(120), 0) << launcher.Output();
   const std::string out = launcher.Output();
   EXPECT_NE(out.find("[launch] restarts: mapper 1"), std::string::npos) << out;
-  std::smatch restored;
-  ASSERT_TRUE(std::regex_search(out, restored, std::regex("resumed from .*: (\\d+) iterations")))
-      << out;
+  const std::vector<std::string> restored = RegexSearch(out, "resumed from .*: (\\d+) iterations");
+  ASSERT_FALSE(restored.empty()) << out;
   EXPECT_GE(std::stol(restored[1]), 20) << out;
 
   const std::string metrics = ReadText(run + "/metrics.json");

@@ -7,7 +7,6 @@
 
 #include <gtest/gtest.h>
 
-#include <regex>
 #include <string>
 
 #include "launch_harness.hpp"
@@ -16,21 +15,20 @@ namespace relplane::testing {
 namespace {
 
 double Number(const std::string& text, const std::string& key) {
-  std::smatch match;
-  if (!std::regex_search(text, match, std::regex("\"" + key + "\": (-?[0-9.eE+-]+)"))) return -1;
-  return std::stod(match[1]);
+  const std::vector<std::string> match = RegexSearch(text, "\"" + key + "\": (-?[0-9.eE+-]+)");
+  return match.empty() ? -1 : std::stod(match[1]);
 }
 
 // ATE RMSE of the first `iterations` of hallway_loop_odometry, odometry on or off.
 double FirstLegAte(bool odometry, int port, std::string* metrics) {
   TempDir dir;
   std::string output;
-  const int code = RunLauncher(
-      {SourceDir() + "/scenarios/hallway_loop_odometry.yaml", "--out", dir.Path() + "/run",
-       "--lcm-url", TestBusUrl(port), "--iterations", "150", "--set",
-       std::string("sim.odometry.enabled=") + (odometry ? "true" : "false"), "--set",
-       "expect={lost_max: 0}"},
-      120, &output);
+  const int code =
+      RunLauncher({SourceDir() + "/scenarios/hallway_loop_odometry.yaml", "--out",
+                   dir.Path() + "/run", "--lcm-url", TestBusUrl(port), "--iterations", "150",
+                   "--set", std::string("sim.odometry.enabled=") + (odometry ? "true" : "false"),
+                   "--set", "expect={lost_max: 0}"},
+                  120, &output);
   *metrics = ReadText(dir.Path() + "/run/metrics.json");
   EXPECT_EQ(code, 0) << output;
   return Number(*metrics, "ate_rmse_m");

@@ -5,7 +5,6 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <regex>
 #include <thread>
 
 #include "launch_harness.hpp"
@@ -77,7 +76,7 @@ TEST(Pipeline, ReplayingALogTwiceGivesIdenticalResults) {
 
   // A live run whose services dropped nothing is reproduced by its replay.
   const std::string metrics = ReadText(live + "/metrics.json");
-  if (std::regex_search(metrics, std::regex("\"frames_dropped_total\": 0[,\\s]"))) {
+  if (!RegexSearch(metrics, "\"frames_dropped_total\": 0[,\\s]").empty()) {
     EXPECT_EQ(results[0][0], ReadText(live + "/trajectory.tum"))
         << "the replay does not reproduce the live run's trajectory";
   } else {
@@ -99,15 +98,16 @@ TEST(Pipeline, StraightHallwayMeetsTheMapperTargets) {
   for (int i = 0; i < 2; ++i) {
     TempDir dir;
     std::string output;
-    ASSERT_EQ(RunLauncher({Scenario(), "--out", dir.Path() + "/run", "--lcm-url",
-                           TestBusUrl(47124 + i), "--set",
-                           std::string("sim.sensor.noise_sigma=") + noise[i]},
-                          120, &output),
-              0)
+    ASSERT_EQ(
+        RunLauncher({Scenario(), "--out", dir.Path() + "/run", "--lcm-url", TestBusUrl(47124 + i),
+                     "--set", std::string("sim.sensor.noise_sigma=") + noise[i]},
+                    120, &output),
+        0)
         << output;
     const std::string metrics = ReadText(dir.Path() + "/run/metrics.json");
     EXPECT_NE(metrics.find("\"expect_pass\": true"), std::string::npos)
-        << "noise " << noise[i] << ":\n" << output;
+        << "noise " << noise[i] << ":\n"
+        << output;
   }
 }
 
