@@ -4,18 +4,17 @@
 // two detected planes that match no label.
 
 #include <gtest/gtest.h>
-#include <yaml-cpp/yaml.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
 #include <string>
 #include <vector>
 
 #include "relplane/pcd/pcd_reader.hpp"
+#include "relplane/plane_truth/labelled_planes.hpp"
 #include "relplane/segmenter/segmenter.hpp"
 
 namespace relplane::segmenter {
@@ -23,20 +22,6 @@ namespace {
 
 const char* const kStamps[] = {"20121214T142255.814212", "20121214T142256.068683",
                                "20121214T142256.332395"};
-// A detection is the labelled plane when it holds most of the label's points and lies along it.
-constexpr double kMostOfIt = 0.5;
-constexpr double kMaxAngleDeg = 5.0;
-constexpr double kMaxOffset = 0.03;  // metres, at the label's points' centroid
-// A second detection along the label holding this share of its points splits it.
-constexpr double kSplitShare = 0.2;
-
-struct Label {
-  std::string name;
-  Eigen::Vector3d normal;
-  double d = 0.0;
-  std::vector<size_t> pixels;  // finite points of its boxes, indices into the frame
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-};
 
 // The labelled plane refitted as the file says it was fitted: least squares over the boxes'
 // finite points, then four refits over those within 3 rms of the last fit.
@@ -67,109 +52,43 @@ void Refit(const pcd::PcdCloud& c, const std::vector<size_t>& pixels, Eigen::Vec
   *d = offset;
 }
 
-std::vector<Label> LoadLabels(const std::string& file, const pcd::PcdCloud& c) {
-  const YAML::Node root = YAML::LoadFile(file);  // JSON is YAML
-  std::vector<Label> labels;
-  for (const auto& plane : root["planes"]) {
-    Label l;
-    l.name = plane["name"].as<std::string>();
-    const auto n = plane["normal"].as<std::vector<double>>();
-    l.normal = Eigen::Vector3d(n[0], n[1], n[2]);
-    l.d = plane["d"].as<double>();
-    for (const auto& box : plane["boxes"]) {
-      const auto b = box.as<std::vector<int>>();
-      for (int v = b[1]; v <= b[3]; ++v) {
-        for (int u = b[0]; u <= b[2]; ++u) {
-          const size_t i = static_cast<size_t>(v) * c.width + u;
-          if (std::isfinite(c.x[i])) l.pixels.push_back(i);
-        }
-      }
-    }
-    for (size_t i : l.pixels) {
-      l.centroid += Eigen::Vector3d(c.x[i], c.y[i], c.z[i]) / static_cast<double>(l.pixels.size());
-    }
-    labels.push_back(l);
-  }
-  return labels;
-}
-
-double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), std::fabs(a.dot(b))) * 180.0 / M_PI;
-}
-
-bool Along(const DetectedPlane& p, const Label& l) {
-  const Eigen::Vector3d n = p.normal.cast<double>();
-  return AngleDeg(n, l.normal) < kMaxAngleDeg &&
-         std::fabs(n.dot(l.centroid) + p.d) < kMaxOffset;
-}
-
-struct Score {
-  int labels = 0;
-  int found = 0;            // labels held by one detection along them
-  int split = 0;            // labels with two or more detections along them
-  int unmatched = 0;        // detections that are no label's
-  std::vector<std::string> missed;
-};
-
 // Segments one frame with `options` and scores it against its labels; the label's numbers are
 // checked to be the fit of its boxes on the way.
-Score Measure(const std::string& stamp, Options options, bool print) {
+plane_truth::LabelScore Measure(const std::string& stamp, Options options, bool print) {
   pcd::PcdCloud c =
       pcd::ReadPcd(std::string(RELPLANE_SHARED_DIR) + "/data/kinect/frame_" + stamp + ".pcd");
   pcd::OpticalToSensor(&c);
-  const std::vector<Label> labels = LoadLabels(std::string(RELPLANE_SOURCE_DIR) +
-                                                   "/tests/segmenter/data/kinect_truth/frame_" +
-                                                   stamp + ".json",
-                                               c);
+  const std::vector<plane_truth::Label> labels =
+      plane_truth::LoadLabels(std::string(RELPLANE_SOURCE_DIR) +
+                                  "/tests/segmenter/data/kinect_truth/frame_" + stamp + ".json",
+                              c);
+  for (const plane_truth::Label& l : labels) {
+    SCOPED_TRACE(l.name);
+    Eigen::Vector3d n;
+    double d;
+    Refit(c, l.pixels, &n, &d);
+    EXPECT_LT(plane_truth::PlaneAngleDeg(n, l.normal), 0.01)
+        << "the file's normal is not its boxes' fit";
+    EXPECT_NEAR(d, l.d, 1e-4);
+  }
   options.keep_labels = true;
   Cloud cloud;
   cloud.x = c.x;
   cloud.y = c.y;
   cloud.z = c.z;
   const Result result = Segmenter(options).Segment(cloud);
-  Score score;
-  score.labels = static_cast<int>(labels.size());
-  std::vector<int> claimed(result.planes.size(), 0);
-  for (const Label& l : labels) {
-    SCOPED_TRACE(l.name);
-    Eigen::Vector3d n;
-    double d;
-    Refit(c, l.pixels, &n, &d);
-    EXPECT_LT(AngleDeg(n, l.normal), 0.01) << "the file's normal is not its boxes' fit";
-    EXPECT_NEAR(d, l.d, 1e-4);
-    std::map<int, int> held;
-    for (size_t i : l.pixels) ++held[result.labels[i]];
-    int best = -1, along = 0;
-    for (const auto& [plane, count] : held) {
-      if (plane < 0) continue;
-      const DetectedPlane& p = result.planes[static_cast<size_t>(plane)];
-      if (count >= kSplitShare * l.pixels.size() && Along(p, l)) ++along;
-      if (count >= kMostOfIt * l.pixels.size() && Along(p, l)) best = plane;
-    }
-    if (best >= 0) {
-      ++score.found;
-      ++claimed[static_cast<size_t>(best)];
-    } else {
-      score.missed.push_back(l.name);
-    }
-    if (along > 1) ++score.split;
+  const plane_truth::LabelScore score =
+      plane_truth::ScoreLabels(labels, result.planes, result.labels);
+  if (!print) return score;
+  for (int j : score.unmatched) {
+    const DetectedPlane& p = result.planes[static_cast<size_t>(j)];
+    std::printf("  %s unmatched: %d points, n = (%.2f %.2f %.2f), d = %.3f, rms %.4f\n",
+                stamp.c_str(), p.num_points, p.normal.x(), p.normal.y(), p.normal.z(), p.d, p.rms);
   }
-  for (size_t j = 0; j < result.planes.size(); ++j) {
-    if (claimed[j] > 0) continue;
-    ++score.unmatched;
-    const DetectedPlane& p = result.planes[j];
-    if (print) {
-      std::printf("  %s unmatched: %d points, n = (%.2f %.2f %.2f), d = %.3f, rms %.4f\n",
-                  stamp.c_str(), p.num_points, p.normal.x(), p.normal.y(), p.normal.z(), p.d,
-                  p.rms);
-    }
-  }
-  if (print) {
-    std::string missed;
-    for (const auto& m : score.missed) missed += " " + m;
-    std::printf("  %s: %d of %d labels found, %d split, %d unmatched; missed:%s\n", stamp.c_str(),
-                score.found, score.labels, score.split, score.unmatched, missed.c_str());
-  }
+  std::string missed;
+  for (const auto& m : score.missed) missed += " " + m;
+  std::printf("  %s: %d of %d labels found, %d split, %zu unmatched; missed:%s\n", stamp.c_str(),
+              score.found, score.labels, score.split, score.unmatched.size(), missed.c_str());
   return score;
 }
 
@@ -188,14 +107,14 @@ TEST(KinectTruth, LabelledPlanesFoundNoneSplit) {
   for (const char* stamp : kStamps) {
     SCOPED_TRACE(stamp);
     std::printf("sensor: kinect_v1\n");
-    const Score s = Measure(stamp, preset, true);
+    const plane_truth::LabelScore s = Measure(stamp, preset, true);
     std::printf("kinect.yaml\n");
     found_yaml += Measure(stamp, yaml, true).found;
     found_defaults += Measure(stamp, Options{}, false).found;
     found_preset += s.found;
     labels += s.labels;
     EXPECT_EQ(s.split, 0);
-    EXPECT_LE(s.unmatched, 4);
+    EXPECT_LE(s.unmatched.size(), 4u);
     for (const auto& m : s.missed) {
       EXPECT_NE(m, "floor");
       EXPECT_NE(m, "big_box_front");

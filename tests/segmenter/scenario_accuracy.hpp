@@ -1,31 +1,19 @@
 #pragma once
 // Segmenter accuracy on the simulator's scenarios (relplane_sim) against the true world:
-// precision and recall of detected planes, normal-angle and offset errors.
+// precision and recall of detected planes, normal-angle and offset errors (the rules:
+// relplane/plane_truth/sim_truth.hpp).
 
 #include <Eigen/Core>
 #include <cstdint>
-#include <limits>
 #include <string>
 #include <vector>
 
+#include "relplane/plane_truth/accuracy.hpp"
 #include "relplane/segmenter/options.hpp"
 
 namespace relplane::segmenter::testing {
 
-struct ScenarioAccuracy {
-  int frames = 0;
-  int true_planes = 0;  // (frame, rectangle) pairs with at least 300 points in view
-  int recalled = 0;
-  int detected = 0;
-  int correct = 0;  // detections that overlap some true rectangle in its plane
-  double median_angle_deg = 0.0;
-  double median_offset_m = 0.0;
-  // With a camera model: the smallest ratio of a detection's RMS to the noise the camera
-  // resolves along its normal at its centroid (infinity without one).
-  double min_rms_to_camera = std::numeric_limits<double>::infinity();
-  double Precision() const { return detected ? static_cast<double>(correct) / detected : 1.0; }
-  double Recall() const { return true_planes ? static_cast<double>(recalled) / true_planes : 1.0; }
-};
+using ScenarioAccuracy = plane_truth::Accuracy;
 
 // Runs the scenario's simulator (its `sim` section, range noise replaced by `noise_sigma`) and
 // segments every `step`-th frame with one streaming Segmenter with default options.
