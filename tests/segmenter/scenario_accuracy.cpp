@@ -21,14 +21,15 @@ constexpr double kMaxWallAngleDeg = 20.0;
 ScenarioAccuracy Measure(const sim::SimOptions& sim_options, const Options& segmenter_options,
                          int step) {
   sim::Simulation simulation(sim_options);
-  plane_truth::SimScorer scorer(simulation.TruePlanes(), sim_options.sensor.camera);
+  const plane_truth::SimScorer scorer(simulation.TruePlanes(), sim_options.sensor.camera);
+  plane_truth::AccuracyTally tally;
   Segmenter segmenter(segmenter_options);
   for (int64_t k = 0; k < simulation.NumIterations(); k += step) {
     const sim::Scan scan = simulation.Frame(k);
     scorer.AddFrame(scan, simulation.SensorPose(k),
-                    segmenter.Segment(plane_truth::CloudOf(scan)).planes);
+                    segmenter.Segment(plane_truth::CloudOf(scan)).planes, &tally);
   }
-  return scorer.Summary();
+  return tally.Summary();
 }
 
 }  // namespace

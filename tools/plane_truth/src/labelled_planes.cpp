@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 namespace relplane::plane_truth {
 namespace {
@@ -36,6 +37,9 @@ std::vector<Label> LoadLabels(const std::string& file, const pcd::PcdCloud& c) {
     l.d = plane["d"].as<double>();
     for (const auto& box : plane["boxes"]) {
       const auto b = box.as<std::vector<int>>();
+      if (b.size() != 4 || b[0] < 0 || b[1] < 0 || b[2] >= c.width || b[3] >= c.height) {
+        throw std::out_of_range("a box of " + l.name + " is not inside the frame");
+      }
       for (int v = b[1]; v <= b[3]; ++v) {
         for (int u = b[0]; u <= b[2]; ++u) {
           const size_t i = static_cast<size_t>(v) * c.width + u;

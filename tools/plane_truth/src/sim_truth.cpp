@@ -88,12 +88,13 @@ SimScorer::SimScorer(std::vector<sim::TruePlane> truth, camera::DepthCameraModel
     : truth_(std::move(truth)), camera_(std::move(camera)) {}
 
 void SimScorer::AddFrame(const sim::Scan& scan, const Eigen::Isometry3d& pose,
-                         const std::vector<segmenter::DetectedPlane>& planes) {
-  tally_.AddFrame();
+                         const std::vector<segmenter::DetectedPlane>& planes,
+                         AccuracyTally* tally) const {
+  tally->AddFrame();
   int correct = 0;
   for (const auto& p : planes) {
     const double floor = CameraNoiseAlongNormal(camera_, p);
-    if (floor > 0.0) tally_.AddRmsToCamera(p.rms / floor);
+    if (floor > 0.0) tally->AddRmsToCamera(p.rms / floor);
     double a, o;
     for (const auto& t : truth_) {
       if (Match(p, t, pose, &a, &o)) {
@@ -102,7 +103,7 @@ void SimScorer::AddFrame(const sim::Scan& scan, const Eigen::Isometry3d& pose,
       }
     }
   }
-  tally_.AddDetections(static_cast<int>(planes.size()), correct);
+  tally->AddDetections(static_cast<int>(planes.size()), correct);
   std::vector<int> hits(truth_.size(), 0);
   for (size_t i = 0; i < scan.rects.size(); ++i) {
     const int r = scan.rects[i];
@@ -117,12 +118,12 @@ void SimScorer::AddFrame(const sim::Scan& scan, const Eigen::Isometry3d& pose,
     for (const auto& p : planes) {
       double a, o;
       if (Match(p, truth_[t], pose, &a, &o)) {
-        tally_.AddRecalled(a, o);
+        tally->AddRecalled(a, o);
         recalled = true;
         break;
       }
     }
-    if (!recalled) tally_.AddMissed();
+    if (!recalled) tally->AddMissed();
   }
 }
 

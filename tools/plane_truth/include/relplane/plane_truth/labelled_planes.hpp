@@ -24,7 +24,7 @@ struct Label {
 };
 
 // The labels of one frame (`cloud`: the frame, organized, in the labels' frame). Throws
-// YAML::Exception for an unreadable file.
+// YAML::Exception for an unreadable file, std::out_of_range for a box outside the frame.
 std::vector<Label> LoadLabels(const std::string& file, const pcd::PcdCloud& cloud);
 
 // One frame's detections against its labels.

@@ -21,7 +21,7 @@ bool Overlaps(const sim::TruePlane& t, const std::vector<Eigen::Vector3d>& exten
 // A scan's points as the segmenter takes them (hits only, the scan's order).
 segmenter::Cloud CloudOf(const sim::Scan& scan);
 
-// Scores frames of one simulation against its world.
+// Scores frames of one simulation against its world, into a tally per method.
 class SimScorer {
  public:
   SimScorer(std::vector<sim::TruePlane> truth, camera::DepthCameraModel camera);
@@ -30,13 +30,11 @@ class SimScorer {
   // detections (sensor frame) in decreasing support: a rectangle is recalled by the
   // best-supported detection that matches it.
   void AddFrame(const sim::Scan& scan, const Eigen::Isometry3d& pose,
-                const std::vector<segmenter::DetectedPlane>& planes);
-  Accuracy Summary() const { return tally_.Summary(); }
+                const std::vector<segmenter::DetectedPlane>& planes, AccuracyTally* tally) const;
 
  private:
   std::vector<sim::TruePlane> truth_;
   camera::DepthCameraModel camera_;
-  AccuracyTally tally_;
 };
 
 }  // namespace relplane::plane_truth
