@@ -53,19 +53,15 @@ PclResult SegmentOrganized(const OrganizedFrame& frame, const OrganizedParams& p
   // segmentation demo pairs it with OrganizedMultiPlaneSegmentation.
   ne.setNormalEstimationMethod(params.covariance_normals ? ne.COVARIANCE_MATRIX
                                                          : ne.AVERAGE_3D_GRADIENT);
-  // A window is not smoothed across a depth jump of more than this factor of the depth: 2 %, the
-  // value of PCL's tutorial on integral-image normals (a Kinect's noise at 4 m is about 1.5 %).
   ne.setMaxDepthChangeFactor(params.max_depth_change);
   ne.setNormalSmoothingSize(static_cast<float>(params.normal_smoothing));
   ne.setInputCloud(cloud);
   ne.compute(*normals);
 
   pcl::OrganizedMultiPlaneSegmentation<pcl::PointXYZ, pcl::Normal, pcl::Label> mps;
-  // As the truth counts a plane in view: at least 300 points.
   mps.setMinInliers(params.min_inliers);
-  // Neighbouring normals within 3 degrees join a region (PCL's default); PCL scales the distance
-  // threshold between neighbours' plane offsets with depth squared, as a Kinect's noise grows
-  // (Trevor et al. 2013), so 2 cm is 2 cm at 1 m and 32 cm at 4 m.
+  // PCL scales the distance threshold between neighbours' plane offsets with depth squared, as
+  // a Kinect's noise grows (Trevor et al. 2013): 2 cm at 1 m is 32 cm at 4 m.
   mps.setAngularThreshold(params.angular_threshold_deg * M_PI / 180.0);
   mps.setDistanceThreshold(params.distance_threshold);
   mps.setMaximumCurvature(params.max_curvature);

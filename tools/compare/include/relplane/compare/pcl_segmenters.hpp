@@ -21,24 +21,29 @@ struct PclResult {
 // where they are set.
 struct OrganizedParams {
   bool covariance_normals = true;  // COVARIANCE_MATRIX; false: AVERAGE_3D_GRADIENT
-  float max_depth_change = 0.02f;  // normals are not smoothed across depth jumps larger than this
-  double normal_smoothing = 10.0;  // pixels
-  unsigned min_inliers = 300;
+  // Normals are not smoothed across a depth jump of more than this factor of the depth, over a
+  // window of this many pixels: the values of PCL's tutorial on integral-image normals.
+  float max_depth_change = 0.02f;
+  double normal_smoothing = 10.0;
+  unsigned min_inliers = 300;  // the truth's "in view" (PCL's default: 1000)
+  // PCL's defaults: neighbouring normals within 3 degrees, plane offsets within 2 cm scaled by
+  // depth squared, a region's curvature (smallest eigenvalue over the trace) under 0.001.
   double angular_threshold_deg = 3.0;
-  double distance_threshold = 0.02;  // metres
-  double max_curvature = 0.001;      // PCL's default
+  double distance_threshold = 0.02;  // metres at 1 m
+  double max_curvature = 0.001;
 };
 PclResult SegmentOrganized(const OrganizedFrame& frame, const OrganizedParams& params);
 
 // SACSegmentation with RANSAC, one plane at a time: the largest plane's inliers are taken out
 // and the search repeats on the rest until the best plane has fewer than min_inliers.
 struct SacParams {
-  double distance_threshold = 0.02;  // metres
+  double distance_threshold = 0.02;  // metres; relplane-compare sets it per frame (SacThreshold)
+  // PCL's default of 50 iterations finds a plane with 99 % confidence only when it holds more
+  // than about 45 % of the points left; 1,000 finds one of 17 %.
   int max_iterations = 1000;
   double probability = 0.99;
-  unsigned min_inliers = 300;
-  int max_planes = 50;
-  unsigned seed = 1;
+  unsigned min_inliers = 300;  // the truth's "in view"
+  int max_planes = 50;         // a bound on the time of a frame of clutter
 };
 PclResult SegmentSac(const OrganizedFrame& frame, const SacParams& params);
 
