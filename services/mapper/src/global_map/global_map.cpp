@@ -189,6 +189,13 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
   const Pose2 start{options.start_pose.x, options.start_pose.y, options.start_pose.yaw};
   for (size_t g = from; g < grouping.groups.size(); ++g) {
     Group& group = grouping.groups[g];
+    // Its members as its last build placed them, before the relative map is built again.
+    std::map<int64_t, Placement> previous;
+    if (group.has_chained) {
+      for (const auto& [id, rel] : group.relative.members) {
+        previous[id] = Apply(group.placement, rel);
+      }
+    }
     if (group.dirty) {
       group.relative =
           BuildRelativeMap(group, {in.store, in.comparisons, world}, options.comparison);
@@ -220,7 +227,7 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
     Prior prior;
     prior.pose = start;
     if (in.store.Plane(group.relative.basis) != nullptr) {
-      prior = PriorWithMemberLines(in, group, options);
+      prior = PriorWithMemberLines(in, previous, group, options);
     }
     if (links.empty()) {
       // §II.D "the first grouping can be placed on the global map by comparing the relative

@@ -260,7 +260,8 @@ const SeenWall& FinestEndSighting(const GlobalMapInputs& in, const GlobalMapOpti
 // fixed poses just before did not see that end still; then the latest member whose reference end
 // was in view so, at about where the sightings of it from fixed poses put it; then the basis's end
 // as the fixed poses have seen it since.
-Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOptions& options) {
+Pose2 PriorPlacement(const GlobalMapInputs& in, const std::map<int64_t, Placement>& previous,
+                     Group& group, const MapperOptions& options) {
   const RelativeMap& map = group.relative;
   int64_t latest = -1;
   Pose2 prior;
@@ -368,8 +369,19 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, Group& group, const MapperOption
   // from the start), metres along the wall.
   const SeenWall since =
       EndSeenFromFixedPoses(in.trajectory, *in.store.Plane(basis), basis_rel.ref);
-  return since.valid && since.iteration >= group.created ? PlacementFromSighting(since, basis_rel)
-                                                         : prior;
+  if (since.valid && since.iteration >= group.created) {
+    return PlacementFromSighting(since, basis_rel);
+  }
+  // Nor since: a sighting whose end the view cut says nothing along its wall, so the group stays
+  // where its last build put that end, when it had it (no new evidence, no move).
+  const auto placed = previous.find(basis);
+  if (basis_seen.cut[basis_rel.ref] && placed != previous.end() &&
+      placed->second.known == Known::kPoint && placed->second.ref == basis_rel.ref) {
+    const double yaw = geometry::WrapAngle(placed->second.alpha - basis_rel.alpha);
+    const Vector2d t = placed->second.point - Eigen::Rotation2Dd(yaw) * basis_rel.point;
+    return {t.x(), t.y(), yaw};
+  }
+  return prior;
 }
 
 }  // namespace
@@ -379,9 +391,10 @@ bool CoarselySampled(const GlobalMapInputs& in, const SeenWall& seen, int ref,
   return SpacingAt(in, seen, ref) > CoarseSpacing(options);
 }
 
-Prior PriorWithMemberLines(const GlobalMapInputs& in, Group& group, const MapperOptions& options) {
+Prior PriorWithMemberLines(const GlobalMapInputs& in, const std::map<int64_t, Placement>& previous,
+                           Group& group, const MapperOptions& options) {
   Prior prior;
-  prior.pose = PriorPlacement(in, group, options);
+  prior.pose = PriorPlacement(in, previous, group, options);
   const RelativeMap& map = group.relative;
   Eigen::Matrix2d spanned = Eigen::Matrix2d::Zero();
   std::vector<int64_t> late;

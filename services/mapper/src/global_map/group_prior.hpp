@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <vector>
 
 #include "global_map/inputs.hpp"
@@ -62,6 +63,9 @@ bool CoarselySampled(const GlobalMapInputs& in, const SeenWall& seen, int ref,
 // to an end: a room linked to the rooms before by orientation only moves centimetres across its
 // outer wall when its basis changes from that wall to a partition beside it whose end, seen far
 // off, is sampled short.
-Prior PriorWithMemberLines(const GlobalMapInputs& in, Group& group, const MapperOptions& options);
+// `previous`: the group's members as its last build placed them in the world (empty before its
+// first).
+Prior PriorWithMemberLines(const GlobalMapInputs& in, const std::map<int64_t, Placement>& previous,
+                           Group& group, const MapperOptions& options);
 
 }  // namespace relplane::mapper
