@@ -259,7 +259,8 @@ const SeenWall& FinestEndSighting(const GlobalMapInputs& in, const GlobalMapOpti
 // seen was not the wall end the relative map starts from, but decimetres along the wall) or the
 // fixed poses just before did not see that end still; then the latest member whose reference end
 // was in view so, at about where the sightings of it from fixed poses put it; then the basis's end
-// as the fixed poses have seen it since.
+// as the fixed poses have seen it since; then, where the view cut the basis's sighting, where the
+// group's last build (`previous`) put that end.
 Pose2 PriorPlacement(const GlobalMapInputs& in, const std::map<int64_t, Placement>& previous,
                      Group& group, const MapperOptions& options) {
   const RelativeMap& map = group.relative;
