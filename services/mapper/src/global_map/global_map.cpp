@@ -189,11 +189,12 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
   const Pose2 start{options.start_pose.x, options.start_pose.y, options.start_pose.yaw};
   for (size_t g = from; g < grouping.groups.size(); ++g) {
     Group& group = grouping.groups[g];
-    // Its members as its last build placed them, before the relative map is built again.
+    // Its members known by a point as its last build placed them, before the relative map is
+    // built again: the prior's last fallback reads only those (group_prior.hpp).
     std::map<int64_t, Placement> previous;
     if (group.has_chained) {
       for (const auto& [id, rel] : group.relative.members) {
-        previous[id] = Apply(group.placement, rel);
+        if (rel.known == Known::kPoint) previous.emplace(id, Apply(group.placement, rel));
       }
     }
     if (group.dirty) {

@@ -63,8 +63,8 @@ bool CoarselySampled(const GlobalMapInputs& in, const SeenWall& seen, int ref,
 // to an end: a room linked to the rooms before by orientation only moves centimetres across its
 // outer wall when its basis changes from that wall to a partition beside it whose end, seen far
 // off, is sampled short.
-// `previous`: the group's members as its last build placed them in the world (empty before its
-// first).
+// `previous`: the group's members known by a point, as its last build placed them in the world
+// (empty before its first).
 Prior PriorWithMemberLines(const GlobalMapInputs& in, const std::map<int64_t, Placement>& previous,
                            Group& group, const MapperOptions& options);
 
