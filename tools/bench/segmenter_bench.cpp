@@ -149,6 +149,35 @@ void BM_Pilaster200x150Path(benchmark::State& state) {
   Run(state, frames, Options{}, false);
 }
 
+// scenarios/office.yaml as the pipeline bench plays it (160x120, its own noise and route),
+// frames 0-299 in order: what the segmenter service does per frame. `describes` is the mean
+// number of assign-and-describe passes per frame (1 when no mixture plane is dropped or
+// refitted after the first).
+void BM_OfficeScenario160x120(benchmark::State& state) {
+  static const auto frames = [] {
+    const auto options = relplane::sim::LoadServiceOptions(std::string(RELPLANE_SOURCE_DIR) +
+                                                           "/scenarios/office.yaml");
+    relplane::sim::Simulation simulation(options.sim);
+    std::vector<Cloud> out;
+    for (int64_t k = 0; k < 300; ++k) {
+      Cloud c;
+      for (const auto& p : simulation.Frame(k).points) c.Add(p);
+      out.push_back(std::move(c));
+    }
+    return out;
+  }();
+  Segmenter segmenter(Options{});
+  size_t k = 0;
+  double describes = 0, frames_run = 0;
+  for (auto _ : state) {
+    const Result r = segmenter.Segment(frames[k++ % frames.size()]);
+    describes += 1 + (r.pieceless_planes > 0) + (r.line_refits > 0) + (r.layer_planes > 0);
+    ++frames_run;
+  }
+  state.counters["points"] = static_cast<double>(frames[0].size());
+  state.counters["describes"] = describes / std::max(1.0, frames_run);
+}
+
 #define SEGMENTER_BENCHMARK(fn) \
   BENCHMARK(fn)->Unit(benchmark::kMillisecond)->Repetitions(9)->ReportAggregatesOnly(true)
 SEGMENTER_BENCHMARK(BM_Synthetic160x120Stream);
@@ -161,6 +190,7 @@ SEGMENTER_BENCHMARK(BM_Unorganized320x240Stream);
 SEGMENTER_BENCHMARK(BM_Kinect640x480Stream);
 SEGMENTER_BENCHMARK(BM_Kinect640x480Cold);
 SEGMENTER_BENCHMARK(BM_Pilaster200x150Path);
+SEGMENTER_BENCHMARK(BM_OfficeScenario160x120);
 
 }  // namespace
 

@@ -259,17 +259,16 @@ PieceWorkspace::~PieceWorkspace() = default;
 PieceWorkspace::PieceWorkspace(PieceWorkspace&&) noexcept = default;
 PieceWorkspace& PieceWorkspace::operator=(PieceWorkspace&&) noexcept = default;
 
-Description DescribePieces(const DescribeRequest& request, const Options& options,
-                           PieceWorkspace* workspace) {
+std::vector<uint8_t> FormPieces(const DescribeRequest& request, const Options& options,
+                                PieceWorkspace* workspace) {
   const Cloud& cloud = request.cloud;
   const std::vector<EmPlane>& planes = request.planes;
-  Description result;
-  std::vector<int32_t>* piece_labels = request.want_piece_labels ? &result.piece_labels : nullptr;
-  PieceWorkspace local;
-  PieceWorkspace::Buffers& w = workspace ? workspace->Get() : local.Get();
-  if (piece_labels) piece_labels->assign(cloud.size(), -1);
+  PieceWorkspace::Buffers& w = workspace->Get();
   BinPoints(cloud, request.labels, request.ambiguous, planes, options, &w);
-  std::vector<Piece> pieces(LabelPieces(planes, options, request.sampling.angular_step, &w));
+  std::vector<Piece>& pieces = w.pieces;
+  pieces.assign(
+      static_cast<size_t>(LabelPieces(planes, options, request.sampling.angular_step, &w)),
+      Piece{});
   const double stride = static_cast<double>(FitStride(cloud.size(), options));
   for (size_t s = 0; s < w.cells.size(); ++s) {
     if (w.piece_of[s] < 0) continue;
@@ -291,6 +290,30 @@ Description DescribePieces(const DescribeRequest& request, const Options& option
     p.cell_spread = half * (std::fabs(p.out.normal.dot(g.u)) + std::fabs(p.out.normal.dot(g.v)));
     p.normal_spread = std::fabs(p.out.normal.dot(g.n));
   }
+  std::vector<uint8_t> has_piece(planes.size(), 0);
+  for (const Piece& p : pieces) {
+    if (p.kept) has_piece[p.plane] = 1;
+  }
+  return has_piece;
+}
+
+Description DescribePieces(const DescribeRequest& request, const Options& options,
+                           PieceWorkspace* workspace) {
+  PieceWorkspace local;
+  PieceWorkspace* ws = workspace ? workspace : &local;
+  FormPieces(request, options, ws);
+  return DescribeFormedPieces(request, options, ws);
+}
+
+Description DescribeFormedPieces(const DescribeRequest& request, const Options& options,
+                                 PieceWorkspace* workspace) {
+  const Cloud& cloud = request.cloud;
+  const std::vector<EmPlane>& planes = request.planes;
+  Description result;
+  std::vector<int32_t>* piece_labels = request.want_piece_labels ? &result.piece_labels : nullptr;
+  PieceWorkspace::Buffers& w = workspace->Get();
+  std::vector<Piece>& pieces = w.pieces;
+  if (piece_labels) piece_labels->assign(cloud.size(), -1);
   result.plane_has_piece.assign(planes.size(), 0);
   for (const Piece& p : pieces) {
     if (p.kept) result.plane_has_piece[p.plane] = 1;

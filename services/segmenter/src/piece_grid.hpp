@@ -18,6 +18,8 @@ namespace relplane::segmenter {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
+struct Piece;  // piece_fit.hpp
+
 // Per occupied cell, in a small array: how many points it holds and whether any of them is
 // solid (not on the strip where two planes meet).
 struct CellCount {
@@ -74,6 +76,7 @@ struct PieceWorkspace::Buffers {
   std::vector<uint8_t> outer;                 // per cell: first or last of its piece on a line
   std::vector<int32_t> piece_point_start;     // per piece and one more: where its points start in
   std::vector<Eigen::Vector3f> piece_points;  // a vertical piece's fitted points, about its fit
+  std::vector<Piece> pieces;                  // FormPieces' pieces, for DescribeFormedPieces
 };
 
 // In-plane axes: for a vertical plane u is horizontal and v points up, so the extent rectangle

@@ -146,8 +146,9 @@ namespace {
 // With a known camera a plane's own noise is what remains on top of the camera's.
 Options WithSensor(Options options) {
   if (options.sensor.Known()) {
-    options.noise.sigma_max = std::max(options.noise.sigma_min,
-                                 std::min(options.noise.sigma_max, options.sensor.surface_sigma_max));
+    options.noise.sigma_max =
+        std::max(options.noise.sigma_min,
+                 std::min(options.noise.sigma_max, options.sensor.surface_sigma_max));
     options.noise.sigma_initial = std::min(options.noise.sigma_initial, options.noise.sigma_max);
   }
   return options;
@@ -227,26 +228,34 @@ Result Segmenter::Segment(const Cloud& input) {
   const Cloud& assigned_cloud = options_.keep_labels ? cloud : described;
   const Options& describe_options = options_.keep_labels ? options_ : describe;
   Description description;
-  auto describe_all = [&] {
+  const auto request = [&] {
+    return DescribeRequest{assigned_cloud,
+                           labels_,
+                           ambiguous_,
+                           planes,
+                           Sampling{result.angular_step, ray_step, share},
+                           options_.keep_labels};
+  };
+  const auto form = [&] {
     AssignPoints(assigned_cloud, planes, options_, &labels_, &ambiguous_);
-    const DescribeRequest request{assigned_cloud,
-                                  labels_,
-                                  ambiguous_,
-                                  planes,
-                                  Sampling{result.angular_step, ray_step, share},
-                                  options_.keep_labels};
-    description = DescribePieces(request, describe_options, &workspace_);
+    return FormPieces(request(), describe_options, &workspace_);
+  };
+  const auto describe_formed = [&] {
+    description = DescribeFormedPieces(request(), describe_options, &workspace_);
     result.planes = std::move(description.planes);
   };
-  describe_all();
+  const auto describe_all = [&] {
+    form();
+    describe_formed();
+  };
   // A mixture plane with no piece of its own is no surface (on a level sensor's noise-free
   // frames a row of floor samples, one of ceiling samples and a wall's column at the same depth
   // lie exactly in one plane square to the view), yet it claims the points where it crosses a
   // wall as ambiguous (AssignPoints), and those cannot connect a piece: the wall's piece is cut
-  // short. The frame is assigned and described again without such planes. They stay in the
-  // mixture the next frame starts from: a wall coming into view has no piece yet
-  // (docs/decisions/segmenter.md).
-  const std::vector<uint8_t>& has_piece = description.plane_has_piece;
+  // short. Such planes are found once the pieces are formed, before they are described, and the
+  // frame is assigned again without them. They stay in the mixture the next frame starts from: a
+  // wall coming into view has no piece yet (docs/decisions/segmenter.md).
+  const std::vector<uint8_t> has_piece = form();
   if (std::find(has_piece.begin(), has_piece.end(), 0) != has_piece.end()) {
     std::vector<EmPlane> surfaces;
     for (size_t j = 0; j < planes.size(); ++j) {
@@ -255,8 +264,9 @@ Result Segmenter::Segment(const Cloud& input) {
     result.pieceless_planes = static_cast<int>(planes.size() - surfaces.size());
     planes = std::move(surfaces);
     result.em_planes = static_cast<int>(planes.size());
-    describe_all();
+    form();
   }
+  describe_formed();
   // A plane flatter than the camera resolves at its range is no surface but the points of one
   // quantized depth value: a tilted surface at range is a staircase of exactly flat layers, and
   // each fits a plane with an RMS near zero. Its mixture plane goes and the frame is assigned

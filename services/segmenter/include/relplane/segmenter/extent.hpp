@@ -81,4 +81,14 @@ struct Description {
 Description DescribePieces(const DescribeRequest& request, const Options& options,
                            PieceWorkspace* workspace = nullptr);
 
+// DescribePieces in two halves, so a caller can see which mixture planes form a kept piece
+// before paying for the description. FormPieces bins the points and finds the connected
+// pieces, keeps them in `workspace` and returns Description::plane_has_piece;
+// DescribeFormedPieces then describes those pieces for the same request, exactly as
+// DescribePieces would.
+std::vector<uint8_t> FormPieces(const DescribeRequest& request, const Options& options,
+                                PieceWorkspace* workspace);
+Description DescribeFormedPieces(const DescribeRequest& request, const Options& options,
+                                 PieceWorkspace* workspace);
+
 }  // namespace relplane::segmenter
