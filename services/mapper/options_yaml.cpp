@@ -165,12 +165,14 @@ MapperOptions ReadMapperOptions(Reader& r) {
   loc.Read("max_held", &o.localisation.max_held);
   loc.Read("open_information", &o.localisation.open_information);
   loc.Read("edge_noise", &o.localisation.edge_noise);
+  loc.Read("heading_gate", &o.localisation.heading_gate);
   Positive(loc, "prior_weight", o.localisation.prior_weight);
   Positive(loc, "drift_rate", o.localisation.drift_rate);
   Positive(loc, "tracked_prediction", o.localisation.tracked_prediction);
   Positive(loc, "max_step", o.localisation.max_step);
   Positive(loc, "open_information", o.localisation.open_information);
   Positive(loc, "edge_noise", o.localisation.edge_noise);
+  Positive(loc, "heading_gate", o.localisation.heading_gate);
 
   Reader mo = r.Child("motion");
   mo.Read("turn_rate", &o.motion.turn_rate);

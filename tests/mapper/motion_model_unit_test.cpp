@@ -70,6 +70,19 @@ TEST(MotionModelUnit, TurningOnTheSpotStandsStill) {
   EXPECT_TRUE(m.known);
   EXPECT_EQ(m.predicted.x, last.x);
   EXPECT_EQ(m.predicted.y, last.y);
+  // The heading's turn over the last two iterations, for the heading prior; not driving on.
+  EXPECT_NEAR(m.yaw_rate, 0.05, 1e-12);
+  EXPECT_EQ(Model().Predict(t, t.poses.at(29), 29, 30).yaw_rate, 0.0);
+}
+
+// The turn's rate is known whether or not a velocity is: turning on the spot from the start,
+// nothing fixed yet.
+TEST(MotionModelUnit, AFirstTurnOnTheSpotHasItsRateBeforeAnyVelocityIsLearnt) {
+  Trajectory t;
+  for (int k = 0; k <= 3; ++k) t.Record(k, {0.0, 0.0, -0.03 * k}, false);
+  const Motion m = Model().Predict(t, t.poses.at(3), 3, 4);
+  EXPECT_FALSE(m.known);
+  EXPECT_NEAR(m.yaw_rate, -0.03, 1e-12);
 }
 
 // Pinned by office_other_sensor, σ = 1 cm, seed 41: through a door with only a jamb in view, its

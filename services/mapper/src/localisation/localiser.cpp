@@ -1,5 +1,7 @@
 #include "localisation/localiser.hpp"
 
+#include <cmath>
+
 #include "global_map/global_map.hpp"
 
 namespace relplane::mapper {
@@ -8,6 +10,7 @@ Localiser::Localiser(const MapperOptions& options)
     : options_(options.localisation),
       fit_(options.fit),
       max_coast_(options.motion.max_coast),
+      turn_rate_(options.motion.turn_rate),
       start_{options.start_pose.x, options.start_pose.y, options.start_pose.yaw} {}
 
 std::vector<Sighting> Localiser::Sightings(const LocaliserFrame& frame, const PlaneStore& store,
@@ -43,10 +46,19 @@ PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const PlaneStore& 
       : motion_known && !fixed.empty()
           ? LearntVelocity(static_cast<int>(iteration - *fixed.rbegin()), options_)
           : Prediction{};
+  // §II.E the heading the motion model expects: the last one turned on at the rate of a turn on
+  // the spot, its error grown by up to a turn_rate an iteration (a heading that is not turning
+  // on the spot turns less).
+  HeadingPrior heading_prior;
+  if (!initializing && frame.previous_iteration >= 0 && heading_sigma_ > 0.0) {
+    const double iterations = static_cast<double>(iteration - frame.previous_iteration);
+    heading_prior.yaw = frame.motion.predicted.yaw + frame.motion.yaw_rate * iterations;
+    heading_prior.sigma = std::hypot(heading_sigma_, turn_rate_ * iterations);
+  }
   bool ends_seen = false;
   auto localise = [&](const geometry::Pose2& previous) {
-    PoseEstimate est =
-        mapper::Localise(sightings, previous, frustum, options_, fit_, held_, prediction);
+    PoseEstimate est = mapper::Localise(sightings, previous, frustum, options_, fit_, held_,
+                                        prediction, heading_prior);
     if (est.status != PoseStatus::kMotionModel || motion_known || ends_seen) return est;
     // The walls leave a direction open and the motion is not known (the start, moving off
     // after a turn on the spot; not while turning): the wall ends seen from poses the walls fixed
@@ -61,7 +73,7 @@ PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const PlaneStore& 
         if (seen.valid) x.end[e] = seen.edge[e];
       }
     }
-    return mapper::Localise(sightings, previous, frustum, options_, fit_, held_);
+    return mapper::Localise(sightings, previous, frustum, options_, fit_, held_, {}, heading_prior);
   };
   PoseEstimate estimate = localise(frame.motion.predicted);
   // Odometry knows whether the sensor moved on while it turned; a learnt velocity does not.
@@ -83,6 +95,9 @@ PoseEstimate Localiser::Localise(const LocaliserFrame& frame, const PlaneStore& 
   const bool held =
       !motion_known && estimate.status == PoseStatus::kMotionModel && !estimate.end_moved;
   held_ = held ? held_ + 1 : 0;
+  // The next prior starts from this heading's error; with no wall in view, from this prior's.
+  heading_sigma_ =
+      estimate.planes > 0 && estimate.yaw_sigma > 0.0 ? estimate.yaw_sigma : heading_prior.sigma;
   if (initializing) estimate.status = PoseStatus::kInitializing;
   if (frame.first_iteration == iteration) estimate.pose = frame.previous_pose;
   return estimate;

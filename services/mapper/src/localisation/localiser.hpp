@@ -51,6 +51,10 @@ class Localiser {
   geometry::Pose2 start_;
   int held_ = 0;
   int64_t last_walled_ = -1;  // the last iteration whose pose mapped walls placed
+  // rad per iteration: how far a heading may turn in an iteration beyond the motion model's turn
+  // (MotionOptions::turn_rate), the heading prior's growth.
+  double turn_rate_;
+  double heading_sigma_ = 0.0;  // rad: the last iteration's heading error (0: none yet)
 };
 
 }  // namespace relplane::mapper

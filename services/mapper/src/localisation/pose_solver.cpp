@@ -79,6 +79,21 @@ Heading EstimateHeading(const std::vector<Sighting>& sightings, const std::vecto
   return h;
 }
 
+// §II.E the walls' heading weighed against the motion model's (HeadingPrior) by their
+// information; unchanged without a prior, or where the two disagree by more than `gate`
+// combined sigmas.
+Heading WithPrior(const Heading& walls, const HeadingPrior& prior, double gate) {
+  if (!(prior.sigma > 0.0) || !(walls.sigma > 0.0)) return walls;
+  const double apart = std::remainder(prior.yaw - walls.yaw, 2.0 * M_PI);
+  if (std::abs(apart) > gate * std::hypot(walls.sigma, prior.sigma)) return walls;
+  Heading out = walls;
+  const double prior_information = 1.0 / (prior.sigma * prior.sigma);
+  out.information = walls.information + prior_information;
+  out.yaw = std::remainder(walls.yaw + apart * prior_information / out.information, 2.0 * M_PI);
+  out.sigma = 1.0 / std::sqrt(out.information);
+  return out;
+}
+
 // §II.D one equation per placed wall: the middle of the part in view lies on the wall's line,
 // n . (c + R m) = n . P. Not the offset d the fit gives at the foot of the perpendicular from the
 // sensor: a fit's offset is as good as its points only where they are.
@@ -315,7 +330,8 @@ Prediction LearntVelocity(int iterations, const LocalisationOptions& options) {
 
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
                       const LearnedFrustum& frustum, const LocalisationOptions& options,
-                      const FitOptions& fit, int held, const Prediction& prediction) {
+                      const FitOptions& fit, int held, const Prediction& prediction,
+                      const HeadingPrior& heading_prior) {
   const MotionContext m{previous, frustum, options, held, prediction};
   PoseEstimate out;
   out.pose = previous;
@@ -343,7 +359,11 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
     // A wall registered as its neighbour a pilaster's depth away drags a position that three
     // walls fix by a third of that, and no wall is then as far off as `outlier`: the
     // worst-fitting one is tried without.
-    if (out.status != PoseStatus::kTracking) break;
+    if (out.status != PoseStatus::kTracking) {
+      const Heading weighed = WithPrior(heading, heading_prior, options.heading_gate);
+      if (weighed.yaw != heading.yaw) out = SolveOnce(sightings, use, weighed, m);
+      break;
+    }
     suspect = WorstFit(sightings, use, out.pose, options);
     if (suspect < 0) break;
     with_suspect = out;

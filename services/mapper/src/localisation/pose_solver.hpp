@@ -34,6 +34,13 @@ struct Prediction {
   double sigma = 0.0;  // m, one sigma
 };
 
+// §II.E the heading the motion model expects: the last heading, turned on at the rate of a turn
+// on the spot, good to `sigma` (rad, one sigma; 0: no prior).
+struct HeadingPrior {
+  double yaw = 0.0;
+  double sigma = 0.0;
+};
+
 // A learnt velocity's prediction `iterations` after the walls last fixed the position: it drifts
 // by up to LocalisationOptions::drift_rate an iteration. Not known for 0 iterations.
 Prediction LearntVelocity(int iterations, const LocalisationOptions& options);
@@ -51,8 +58,14 @@ Prediction LearntVelocity(int iterations, const LocalisationOptions& options);
 // moved the position (`end_moved`): the sensor may have moved on a step in each.
 // `prediction`: where `previous` is the motion model's prediction (a learnt velocity or wheel
 // odometry), how far off it may be by now; unknown where `previous` is the last pose held.
+// `heading_prior`: where the walls leave the position open (the motion model's case), their
+// heading is weighed against this prior by the two sigmas, unless they disagree by more than
+// LocalisationOptions::heading_gate combined sigmas (the motion changed); yaw_sigma is then the
+// combined one. A lone sliver of a wall fitted degrees off turns the pose by what it shows
+// beyond the prior's error, not by all of it.
 PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Pose2& previous,
                       const LearnedFrustum& frustum, const LocalisationOptions& options,
-                      const FitOptions& fit, int held = 0, const Prediction& prediction = {});
+                      const FitOptions& fit, int held = 0, const Prediction& prediction = {},
+                      const HeadingPrior& heading_prior = {});
 
 }  // namespace relplane::mapper

@@ -63,7 +63,7 @@ bool MotionModel::MedianStep(const Trajectory& trajectory, int64_t i0, int64_t i
 }
 
 bool MotionModel::TurningOnTheSpot(const Trajectory& trajectory, const geometry::Pose2& last,
-                                   int64_t last_iteration) const {
+                                   int64_t last_iteration, double* rate) const {
   // A heading from short walls alone wobbles back and forth by more than a turn's step, but its
   // wobbles do not add up: the turn must show over the last two iterations as well.
   const auto& poses = trajectory.poses;
@@ -72,9 +72,15 @@ bool MotionModel::TurningOnTheSpot(const Trajectory& trajectory, const geometry:
       !Turning(before->second, last, last_iteration - before->first)) {
     return false;
   }
+  const auto turn = [&](const std::pair<const int64_t, geometry::Pose2>& from) {
+    return std::remainder(last.yaw - from.second.yaw, 2.0 * M_PI) /
+           static_cast<double>(last_iteration - from.first);
+  };
+  *rate = turn(*before);
   auto earlier = poses.lower_bound(before->first - 1);
-  return earlier == poses.end() || earlier->first >= before->first ||
-         Turning(earlier->second, last, last_iteration - earlier->first);
+  if (earlier == poses.end() || earlier->first >= before->first) return true;
+  *rate = turn(*earlier);
+  return Turning(earlier->second, last, last_iteration - earlier->first);
 }
 
 Motion MotionModel::Predict(const Trajectory& trajectory, const geometry::Pose2& last,
@@ -83,24 +89,26 @@ Motion MotionModel::Predict(const Trajectory& trajectory, const geometry::Pose2&
   // direction: where they leave one open (a hallway between door frames) the position along it
   // moves on instead of standing still as the motion model alone would.
   Motion out{last, false};
-  if (trajectory.fixed.empty() || last_iteration < 0 ||
-      iteration - last_iteration > options_.max_gap) {
-    return out;
-  }
+  if (last_iteration < 0 || iteration - last_iteration > options_.max_gap) return out;
+  // The heading turns on at a turn's rate whether or not a velocity is learnt yet (the start,
+  // turning on the spot).
+  double rate = 0.0;
+  const bool turning = TurningOnTheSpot(trajectory, last, last_iteration, &rate);
+  if (turning) out.yaw_rate = rate;
+  if (trajectory.fixed.empty()) return out;
   int64_t i0 = 0, i1 = 0;
   double median = 0.0;
   if (!LearningStretch(trajectory, last, &i0, &i1)) return out;
   if (!MedianStep(trajectory, i0, i1, &median)) return out;
   // A span of turning on the spot learns a velocity of nought, which says nothing of how the
   // sensor moves off once the turn ends (the paths' corners).
-  out.known =
-      !Turning(trajectory.poses.at(i0), trajectory.poses.at(i1), i1 - i0);
+  out.known = !Turning(trajectory.poses.at(i0), trajectory.poses.at(i1), i1 - i0);
   // Only the part along the heading: the platform drives forwards (the paper's robot, the
   // simulator's paths), and a sideways part is the noise of the fixed poses, which would walk
   // the position off along an open direction.
   const Eigen::Vector2d step(std::clamp(median, -max_step_, max_step_), 0.0);
   // Turning on the spot, standing still is the motion.
-  if (TurningOnTheSpot(trajectory, last, last_iteration)) {
+  if (turning) {
     out.known = true;
     return out;
   }

@@ -23,6 +23,10 @@ struct Motion {
   // solver's (LearntVelocity).
   bool odometry = false;
   double sigma = 0.0;
+  // rad per iteration: the heading's turn, learnt over the last iterations while the sensor
+  // turns on the spot (0 otherwise); `predicted` keeps the last heading, the heading prior turns
+  // on at this rate (Localiser).
+  double yaw_rate = 0.0;
 };
 
 class MotionModel {
@@ -33,8 +37,8 @@ class MotionModel {
 
   // The pose at `iteration`, from `last`, the pose of `last_iteration` (-1: none yet), and the
   // poses the walls fixed in `trajectory`.
-  Motion Predict(const Trajectory& trajectory, const geometry::Pose2& last,
-                 int64_t last_iteration, int64_t iteration) const;
+  Motion Predict(const Trajectory& trajectory, const geometry::Pose2& last, int64_t last_iteration,
+                 int64_t iteration) const;
 
   // Turning on the spot (the paths' corners): the heading is seen whatever the walls leave open,
   // and a sensor turning faster than MotionOptions::turn_rate is taken not to move on; faster by
@@ -57,9 +61,10 @@ class MotionModel {
                        int64_t* i1) const;
   // The median step along the heading between consecutive fixed poses in [i0, i1].
   bool MedianStep(const Trajectory& trajectory, int64_t i0, int64_t i1, double* step) const;
-  // The heading turned over the last iteration and over the last two.
+  // The heading turned over the last iteration and over the last two; `rate` (rad per
+  // iteration) is its turn over the last two.
   bool TurningOnTheSpot(const Trajectory& trajectory, const geometry::Pose2& last,
-                        int64_t last_iteration) const;
+                        int64_t last_iteration, double* rate) const;
 
   MotionOptions options_;
   double max_step_;

@@ -174,6 +174,9 @@ struct LocalisationOptions {
   // m: a wall end's position noise (2 sigma) where its samples lie close together: a mapped
   // end and a static edge seen now are held to it, and a line's unit weight stands for it
   double edge_noise = 0.03;
+  // sigmas: where the walls leave the position open, their heading and the motion model's are
+  // weighed together unless this many combined sigmas apart (then the motion changed).
+  double heading_gate = 3.0;
 };
 
 // §II.E the motion model: a constant velocity learnt from the poses the walls fixed.
