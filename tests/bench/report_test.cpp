@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <regex>
 #include <sstream>
 
 namespace relplane::bench {
@@ -109,14 +108,19 @@ TEST(HistogramSvg, TitleAndAxisLabelsFitTheFigure) {
   std::ostringstream svg;
   WriteHistogramSvg(Report(1.5, 4.0, 0.4, 0.2, 0.06, 0.05, 0.0), svg);
   const std::string text = svg.str();
-  std::smatch width;
-  ASSERT_TRUE(std::regex_search(text, width, std::regex("<svg[^>]* width=\"(\\d+)\"")));
-  const int width_px = std::stoi(width[1]);
-  std::regex label(">([^<]+)</text>");
+  // The <svg ...> tag's width="N", then the text of each <text ...>LINE</text>.
+  const size_t svg_tag = text.find("<svg");
+  ASSERT_NE(svg_tag, std::string::npos);
+  const size_t width_at = text.find(" width=\"", svg_tag);
+  ASSERT_LT(width_at, text.find('>', svg_tag));
+  const int width_px = std::stoi(text.substr(width_at + 8));
   bool title = false, x_axis = false, y_axis = false;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), label); it != std::sregex_iterator();
-       ++it) {
-    const std::string line = (*it)[1];
+  for (size_t end = text.find("</text>"); end != std::string::npos;
+       end = text.find("</text>", end + 1)) {
+    const size_t start = text.rfind('>', end - 1) + 1;
+    ASSERT_LT(start, end) << "empty or nested <text> at " << end;
+    const std::string line = text.substr(start, end - start);
+    ASSERT_EQ(line.find('<'), std::string::npos) << line;
     // Labels start at the 70 px left margin at most: each must end inside the figure.
     EXPECT_LE(line.size(), FitsIn(width_px - 70)) << "clipped: " << line;
     title = title || line.find("160x120 clouds at 30 Hz: end-to-end latency") != std::string::npos;

@@ -2,10 +2,10 @@
 // and yaw_sigma), checked against the information computed by hand from the walls' geometry.
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "comparison/comparison.hpp"
+#include "eigen_solver_2d.hpp"
 #include "ideal_segmenter.hpp"
 #include "localisation/pose_solver.hpp"
 

@@ -16,29 +16,28 @@ namespace relplane::mapper {
 namespace {
 
 using Eigen::Vector2d;
-
-PlaneInput Wall(Vector2d p0, Vector2d p1) { return testing::WallSeen(p0, p1); }
+using testing::WallSeen;
 
 TEST(Registration, MatchesTheSameWallNotItsCollinearNeighbour) {
   RegistrationOptions options;
-  const Observation last = *MakeObservation(Wall({3, -1}, {3, 1}), 10, 0.3);
+  const Observation last = *MakeObservation(WallSeen({3, -1}, {3, 1}), 10, 0.3);
   // Moved 3 cm closer: the same wall.
-  const Observation same = *MakeObservation(Wall({2.97, -1}, {2.97, 1}), 11, 0.3);
+  const Observation same = *MakeObservation(WallSeen({2.97, -1}, {2.97, 1}), 11, 0.3);
   EXPECT_GT(MatchScore(last, same, options), 0.0);
   // A collinear wall beside it (a door between) must not match: no overlap.
-  const Observation beside = *MakeObservation(Wall({2.97, 2}, {2.97, 4}), 11, 0.3);
+  const Observation beside = *MakeObservation(WallSeen({2.97, 2}, {2.97, 4}), 11, 0.3);
   EXPECT_LT(MatchScore(last, beside, options), 0.0);
   // Seen too long ago.
-  const Observation late = *MakeObservation(Wall({2.97, -1}, {2.97, 1}), 10 + 20, 0.3);
+  const Observation late = *MakeObservation(WallSeen({2.97, -1}, {2.97, 1}), 10 + 20, 0.3);
   EXPECT_LT(MatchScore(last, late, options), 0.0);
   // Another orientation.
-  const Observation turned = *MakeObservation(Wall({2, -1}, {4, 1}), 11, 0.3);
+  const Observation turned = *MakeObservation(WallSeen({2, -1}, {4, 1}), 11, 0.3);
   EXPECT_LT(MatchScore(last, turned, options), 0.0);
 }
 
 // The wall from a to b as the segmenter reports it from the origin, fitted to `support` points.
 PlaneInput Fitted(Vector2d a, Vector2d b, int support) {
-  PlaneInput in = Wall(a, b);
+  PlaneInput in = WallSeen(a, b);
   in.support = support;
   return in;
 }
@@ -162,7 +161,7 @@ TEST(Registration, APieceOfAWallAnotherPieceRegisteredToDoesNotTakeThePlaneBehin
   // It must not register there: it is left to backtracking or a new rltplane.
   MapperState state;
   const auto seen_at = [](Vector2d a, Vector2d b, int64_t k) {
-    return *MakeObservation(Wall(a, b), k, 0.3);
+    return *MakeObservation(WallSeen(a, b), k, 0.3);
   };
   state.store.planes.emplace(1, RltPlane(1, seen_at({1.0, -1.0}, {4.0, -1.0}, 9), 0.05, 100));
   state.store.planes.emplace(2, RltPlane(2, seen_at({0.6, -1.28}, {1.5, -1.28}, 9), 0.05, 100));
@@ -193,13 +192,14 @@ TEST(Registration, ASightingSomeIterationsOldIsComparedFromWhereTheSensorIsNow) 
   // the pose it was seen from to the pose now, the face lies beside that wall, not on it.
   MapperState state;
   state.store.planes.emplace(
-      1, RltPlane(1, *MakeObservation(Wall({4.0, 0.0}, {4.0, 0.5}), 6, 0.3), 0.05, 100));
+      1, RltPlane(1, *MakeObservation(WallSeen({4.0, 0.0}, {4.0, 0.5}), 6, 0.3), 0.05, 100));
   state.store.recent = {1};
   state.trajectory.poses[6] = geometry::Pose2{0.0, 0.0, 0.0};
   const geometry::Pose2 now{0.0, 0.0, 0.12};
   const geometry::Pose2 to_sensor = now.Inverse();
   const auto seen_now = [&](Vector2d a, Vector2d b, int64_t k) {
-    return std::vector<Observation>{*MakeObservation(Wall(to_sensor * a, to_sensor * b), k, 0.3)};
+    return std::vector<Observation>{
+        *MakeObservation(WallSeen(to_sensor * a, to_sensor * b), k, 0.3)};
   };
   const std::vector<Observation> behind = seen_now({4.2, 0.45}, {4.2, 1.5}, 10);
   RegistrationOptions options;
@@ -211,7 +211,7 @@ TEST(Registration, ASightingSomeIterationsOldIsComparedFromWhereTheSensorIsNow) 
       -1);
   // The face itself, seen again once the turn has ended, still registers.
   state.store.planes.at(1).Add(*MakeObservation(
-      Wall(to_sensor * Vector2d(4.0, 0.0), to_sensor * Vector2d(4.0, 0.5)), 11, 0.3));
+      WallSeen(to_sensor * Vector2d(4.0, 0.0), to_sensor * Vector2d(4.0, 0.5)), 11, 0.3));
   state.trajectory.poses[11] = now;
   EXPECT_EQ(RegisterObservations(seen_now({4.0, 0.0}, {4.0, 0.5}, 12), state.store, state.world,
                                  state.trajectory, options, &now)[0],
@@ -229,7 +229,7 @@ TEST(Registration, APieceOfAWallTakesTheWallsOtherRltplaneWhenItsFirstChoiceIsTa
   // did (office_other_sensor, σ = 1 cm, seed 41, frames 474-481).
   MapperState state;
   const auto seen_from = [](double x, Vector2d a, Vector2d b, int64_t k) {
-    return *MakeObservation(Wall(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
+    return *MakeObservation(WallSeen(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
   };
   state.store.planes.emplace(1, RltPlane(1, seen_from(0.30, {3, -2}, {3, -0.5}, 6), 0.05, 100));
   state.store.planes.at(1).Add(seen_from(0.35, {3, -2}, {3, -0.5}, 7));
@@ -275,7 +275,7 @@ TEST(Registration, AWallSeenWholeAsALineAlsoFeedsItsOlderMappedRltplane) {
   // to a door's jambs (office_other_sensor, σ = 1 cm, seed 130: 1.2 degrees off).
   MapperState state;
   const auto seen_from = [](double x, Vector2d a, Vector2d b, int64_t k) {
-    return *MakeObservation(Wall(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
+    return *MakeObservation(WallSeen(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
   };
   for (int64_t k = 1; k <= 8; ++k) {
     const Observation piece = seen_from(0.05 * static_cast<double>(k), {3, -2}, {3, -0.5}, k);

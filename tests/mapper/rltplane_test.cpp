@@ -10,18 +10,17 @@ namespace relplane::mapper {
 namespace {
 
 using Eigen::Vector2d;
-
-PlaneInput Wall(Vector2d p0, Vector2d p1) { return testing::WallSeen(p0, p1); }
+using testing::WallSeen;
 
 // A wall taken for seen whole (both edges steady) that is later seen longer was not whole:
 // an edge cut by the range stays put while the sensor turns in place. Its length is the whole
 // sightings', not the mean with the partial ones, while those are fewer.
 TEST(RltPlane, FullLengthIgnoresFewerSightingsShorterThanTheWallWasSeenLater) {
-  RltPlane plane(0, *MakeObservation(Wall({2, -1}, {2, 1}), 0, 0.3), 0.05, 3000);
-  for (int k = 1; k < 25; ++k) plane.Add(*MakeObservation(Wall({2, -1}, {2, 1}), k, 0.3));
+  RltPlane plane(0, *MakeObservation(WallSeen({2, -1}, {2, 1}), 0, 0.3), 0.05, 3000);
+  for (int k = 1; k < 25; ++k) plane.Add(*MakeObservation(WallSeen({2, -1}, {2, 1}), k, 0.3));
   plane.MarkFull(0, 24);
   EXPECT_NEAR(plane.Length(), 2.0, 1e-9);
-  for (int k = 25; k < 60; ++k) plane.Add(*MakeObservation(Wall({2, -1}, {2, 2}), k, 0.3));
+  for (int k = 25; k < 60; ++k) plane.Add(*MakeObservation(WallSeen({2, -1}, {2, 2}), k, 0.3));
   plane.MarkFull(25, 59);
   EXPECT_NEAR(plane.Length(), 3.0, 1e-9);
 }
@@ -32,12 +31,12 @@ TEST(RltPlane, FullLengthIgnoresFewerSightingsShorterThanTheWallWasSeenLater) {
 // length is what most sightings show.
 TEST(RltPlane, FullLengthOfAPieceSeenTooLongInARunOfSightingsIsWhatMostShow) {
   const Vector2d near_end(3, 0.95), far_end(3.4, 0.95);
-  RltPlane plane(0, *MakeObservation(Wall(far_end, near_end), 0, 0.3), 0.05, 3000);
+  RltPlane plane(0, *MakeObservation(WallSeen(far_end, near_end), 0, 0.3), 0.05, 3000);
   // 0.6-0.68 m in 4 of every 10 sightings, twice two in a row; the others within 2 cm.
   const double extra[10] = {0.0, 0.25, 0.23, -0.01, 0.01, 0.28, 0.2, -0.02, 0.0, 0.02};
   for (int k = 1; k < 60; ++k) {
     const double e = extra[k % 10];
-    plane.Add(*MakeObservation(Wall(far_end, near_end - Vector2d(e, 0)), k, 0.3));
+    plane.Add(*MakeObservation(WallSeen(far_end, near_end - Vector2d(e, 0)), k, 0.3));
   }
   plane.MarkFull(0, 59);
   EXPECT_NEAR(plane.Length(), 0.4, 0.025);
@@ -51,7 +50,7 @@ TEST(RltPlane, FullLengthOfAPieceSeenTooLongInARunOfSightingsIsWhatMostShow) {
 TEST(RltPlane, FullLengthStillCountsTheWholeSightingsAlreadyDropped) {
   const Vector2d near_end(6, 0.95);
   auto seen = [&](double length, int64_t k) {
-    return *MakeObservation(Wall(near_end, near_end + length * Vector2d(0, 1)), k, 0.3);
+    return *MakeObservation(WallSeen(near_end, near_end + length * Vector2d(0, 1)), k, 0.3);
   };
   RltPlane plane(0, seen(0.3, 0), 0.05, 100);  // keeps 100 sightings
   for (int k = 1; k < 100; ++k) plane.Add(seen(0.3, k));
@@ -71,11 +70,11 @@ TEST(RltPlane, FullLengthStillCountsTheWholeSightingsAlreadyDropped) {
 // whole or not (§II.C maximum size): the jamb's length put the wall beside it 0.5 m off.
 TEST(RltPlane, ALengthSeenInOneSightingAloneIsNotTheWallsSize) {
   const Vector2d foot(2, -1), top(2, -0.7);  // a 0.3 m door jamb
-  RltPlane plane(0, *MakeObservation(Wall(foot - Vector2d(0, 0.8), top), 0, 0.3), 0.05, 3000);
+  RltPlane plane(0, *MakeObservation(WallSeen(foot - Vector2d(0, 0.8), top), 0, 0.3), 0.05, 3000);
   for (int k = 1; k < 40; ++k) {
     // Every tenth sighting reaches 0.3 m (once 0.8 m) farther along the floor.
     const double spike = k % 10 == 5 ? (k == 25 ? 0.8 : 0.3) : 0.0;
-    plane.Add(*MakeObservation(Wall(foot - Vector2d(0, spike), top), k, 0.3));
+    plane.Add(*MakeObservation(WallSeen(foot - Vector2d(0, spike), top), k, 0.3));
     if (k >= 2) {
       EXPECT_NEAR(plane.Length(), 0.3, 1e-9) << k;
     }
@@ -83,9 +82,9 @@ TEST(RltPlane, ALengthSeenInOneSightingAloneIsNotTheWallsSize) {
   plane.MarkFull(0, 39);
   EXPECT_NEAR(plane.Length(), 0.3, 1e-9);
   // A wall that grows is still followed, a sighting behind.
-  RltPlane growing(1, *MakeObservation(Wall({3, -1}, {3, 0}), 0, 0.3), 0.05, 3000);
+  RltPlane growing(1, *MakeObservation(WallSeen({3, -1}, {3, 0}), 0, 0.3), 0.05, 3000);
   for (int k = 1; k < 10; ++k) {
-    growing.Add(*MakeObservation(Wall({3, -1}, {3, 0.05 * k}), k, 0.3));
+    growing.Add(*MakeObservation(WallSeen({3, -1}, {3, 0.05 * k}), k, 0.3));
   }
   EXPECT_NEAR(growing.Length(), 1.0 + 0.05 * 8, 1e-9);
 }

@@ -19,13 +19,12 @@ namespace {
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
-
-PlaneInput Wall(Vector2d p0, Vector2d p1) { return testing::WallSeen(p0, p1); }
+using testing::WallSeen;
 
 // Registers a sighting of the wall from a to b at iteration k as rltplane `id` (new ones join
 // the ungrouped list), as the mapper's registration would.
 void See(MapperState* state, int64_t id, int64_t k, Vector2d a, Vector2d b) {
-  Observation o = *MakeObservation(Wall(a, b), k, 0.3);
+  Observation o = *MakeObservation(WallSeen(a, b), k, 0.3);
   if (!state->store.planes.count(id)) {
     state->store.planes.emplace(id, RltPlane(id, o, 0.05, 1000));
     state->grouping.ungrouped.push_back(id);
@@ -36,23 +35,23 @@ void See(MapperState* state, int64_t id, int64_t k, Vector2d a, Vector2d b) {
 }
 
 TEST(Observation, ReducesAWallAndRejectsFloorsAndBadNumbers) {
-  auto obs = MakeObservation(Wall({3, -1}, {3, 2}), 7, 0.3);
+  auto obs = MakeObservation(WallSeen({3, -1}, {3, 2}), 7, 0.3);
   ASSERT_TRUE(obs);
   EXPECT_NEAR(obs->d, 3.0, 1e-12);
   EXPECT_TRUE(obs->normal.isApprox(Vector2d(-1, 0)));
   EXPECT_NEAR(obs->Length(), 3.0, 1e-12);
   EXPECT_NEAR(obs->z_max - obs->z_min, 2.0, 1e-12);
-  PlaneInput floor = Wall({3, -1}, {3, 2});
+  PlaneInput floor = WallSeen({3, -1}, {3, 2});
   floor.normal = Vector3d(0, 0, 1);
   EXPECT_FALSE(MakeObservation(floor, 0, 0.3));
-  PlaneInput nan = Wall({3, -1}, {3, 2});
+  PlaneInput nan = WallSeen({3, -1}, {3, 2});
   nan.d = std::nan("");
   EXPECT_FALSE(MakeObservation(nan, 0, 0.3));
-  PlaneInput zero = Wall({3, -1}, {3, 2});
+  PlaneInput zero = WallSeen({3, -1}, {3, 2});
   zero.normal.setZero();
   EXPECT_FALSE(MakeObservation(zero, 0, 0.3));
   // A normal sent away from the sensor is turned towards it.
-  PlaneInput flipped = Wall({3, -1}, {3, 2});
+  PlaneInput flipped = WallSeen({3, -1}, {3, 2});
   flipped.normal = -flipped.normal;
   flipped.d = -flipped.d;
   EXPECT_TRUE(MakeObservation(flipped, 0, 0.3)->normal.isApprox(Vector2d(-1, 0)));
@@ -63,7 +62,7 @@ TEST(Observation, ReducesAWallAndRejectsFloorsAndBadNumbers) {
 // door's sides hide it, not its ends. A wall end at a corner of the nearer wall is not hidden.
 TEST(Observation, EdgesSeenThroughANearerPlaneAreCut) {
   std::vector<Observation> obs;
-  for (const PlaneInput& in : {Wall({2, 2}, {2, -2}), Wall({6, 1.8}, {6, -1.8})}) {
+  for (const PlaneInput& in : {WallSeen({2, 2}, {2, -2}), WallSeen({6, 1.8}, {6, -1.8})}) {
     obs.push_back(*MakeObservation(in, 0, 0.3));
   }
   MarkOccludedEdges(&obs);
@@ -71,7 +70,7 @@ TEST(Observation, EdgesSeenThroughANearerPlaneAreCut) {
   EXPECT_TRUE(obs[1].cut[0] && obs[1].cut[1]);
   // A corridor: the side wall y = 1 from x = 1 to 5 meets the end wall x = 5 at its corner.
   obs.clear();
-  for (const PlaneInput& in : {Wall({1, 1}, {5, 1}), Wall({5, 1}, {5, -1})}) {
+  for (const PlaneInput& in : {WallSeen({1, 1}, {5, 1}), WallSeen({5, 1}, {5, -1})}) {
     obs.push_back(*MakeObservation(in, 0, 0.3));
   }
   MarkOccludedEdges(&obs);
@@ -87,7 +86,7 @@ TEST(Observation, AnEndJustPastANearerWallsEndIsCutWhicheverWayItsEdgesRun) {
     SCOPED_TRACE(swapped ? "edges swapped" : "edges as made");
     std::vector<Observation> obs;
     for (const PlaneInput& in :
-         {Wall({2, 0}, {6.5, 1}), Wall({6, -0.05}, {6, -2}), Wall({8, 2.4}, {8, 4})}) {
+         {WallSeen({2, 0}, {6.5, 1}), WallSeen({6, -0.05}, {6, -2}), WallSeen({8, 2.4}, {8, 4})}) {
       obs.push_back(*MakeObservation(in, 0, 0.3));
     }
     if (swapped) std::swap(obs[0].edge[0], obs[0].edge[1]);
@@ -145,7 +144,7 @@ TEST(Grouping, ShortLivedPlanesTimeOut) {
   MapperOptions options;
   MapperState state;
   state.store.planes.emplace(
-      5, RltPlane(5, *MakeObservation(Wall({2, -1}, {2, 1}), 0, 0.3), 0.05, 100));
+      5, RltPlane(5, *MakeObservation(WallSeen({2, -1}, {2, 1}), 0, 0.3), 0.05, 100));
   // Registration hands the new rltplane to grouping, which keeps it on the ungrouped list (§II.B).
   UpdateGroups({5}, {}, 1, options.grouping, state.grouping, state.store);
   EXPECT_EQ(state.grouping.ungrouped, (std::vector<int64_t>{5}));
@@ -181,12 +180,12 @@ TEST(Grouping, APlaneWhoseOrientationWandersIsNotGrouped) {
 
 TEST(Localisation, TwoWallsGiveThePoseOneWallTheMotionModel) {
   // Map: wall x = 4 (frame angle pi/2, normal -x... as seen) and wall y = 1.
-  RltPlane a(0, *MakeObservation(Wall({4, -1}, {4, 1}), 0, 0.3), 0.05, 100);
-  RltPlane b(1, *MakeObservation(Wall({0, 1}, {4, 1}), 0, 0.3), 0.05, 100);
+  RltPlane a(0, *MakeObservation(WallSeen({4, -1}, {4, 1}), 0, 0.3), 0.05, 100);
+  RltPlane b(1, *MakeObservation(WallSeen({0, 1}, {4, 1}), 0, 0.3), 0.05, 100);
   const geometry::Pose2 truth{1.0, -0.5, 0.1};
   const geometry::Pose2 inv = truth.Inverse();
-  a.Add(*MakeObservation(Wall(inv * Vector2d(4, -1), inv * Vector2d(4, 1)), 1, 0.3));
-  b.Add(*MakeObservation(Wall(inv * Vector2d(0, 1), inv * Vector2d(4, 1)), 1, 0.3));
+  a.Add(*MakeObservation(WallSeen(inv * Vector2d(4, -1), inv * Vector2d(4, 1)), 1, 0.3));
+  b.Add(*MakeObservation(WallSeen(inv * Vector2d(0, 1), inv * Vector2d(4, 1)), 1, 0.3));
   Placement pa, pb;
   pa.alpha = a.Observations().front().Alpha();
   pa.point = {4, -1};
@@ -223,7 +222,8 @@ TEST(Localisation, AWallEndSeenFromAFixedPoseMovesThePositionAlongTheHeadingOnly
     const geometry::Pose2 truth{0.05, 0.0, yaw};
     const geometry::Pose2 inv = truth.Inverse();
     // Heading along the wall, then across it (the end 71 degrees to the side).
-    RltPlane wall(0, *MakeObservation(Wall(inv * Vector2d(1.5, 1), inv * end), 1, 0.3), 0.05, 100);
+    RltPlane wall(0, *MakeObservation(WallSeen(inv * Vector2d(1.5, 1), inv * end), 1, 0.3), 0.05,
+                  100);
     Placement line;
     line.alpha = geometry::WrapAngle(yaw + wall.Latest().Alpha());
     line.point = {0, 1};
@@ -255,7 +255,7 @@ TEST(Localisation, AMappedWallEndTheViewDidNotShowDoesNotMoveThePosition) {
   const Vector2d end(3, 1), hidden(2.94, 1);
   const geometry::Pose2 truth{0.05, 0.0, 0.0};
   const geometry::Pose2 inv = truth.Inverse();
-  Observation seen_now = *MakeObservation(Wall(inv * Vector2d(1.5, 1), inv * hidden), 1, 0.3);
+  Observation seen_now = *MakeObservation(WallSeen(inv * Vector2d(1.5, 1), inv * hidden), 1, 0.3);
   const RltPlane wall(0, seen_now, 0.05, 100);
   const int e = (truth * seen_now.edge[0] - hidden).norm() < 1e-6 ? 0 : 1;
   Placement placed;
@@ -292,8 +292,8 @@ PoseEstimate LocaliseInHallway(double x, const geometry::Pose2& previous, double
   std::vector<Sighting> sightings;
   for (int k = 0; k < 3; ++k) {
     const Vector2d far = walls[k][0] == seen_end[k] ? walls[k][1] : walls[k][0];
-    planes.emplace_back(k, *MakeObservation(Wall(far - sensor, seen_end[k] - sensor), 1, 0.3), 0.05,
-                        100);
+    planes.emplace_back(k, *MakeObservation(WallSeen(far - sensor, seen_end[k] - sensor), 1, 0.3),
+                        0.05, 100);
     Placement line;
     line.alpha = planes.back().Latest().Alpha();
     line.point = walls[k][0];
@@ -376,7 +376,7 @@ TEST(Localisation, WallsThatAllDisagreeKeepThePreviousPose) {
   for (int k = 0; k < 4; ++k) {
     const Vector2d a = ends[k][0] + nearer[k] - previous.Translation();
     const Vector2d b = ends[k][1] + nearer[k] - previous.Translation();
-    planes.emplace_back(k, *MakeObservation(Wall(a, b), 1, 0.3), 0.05, 100);
+    planes.emplace_back(k, *MakeObservation(WallSeen(a, b), 1, 0.3), 0.05, 100);
     mapped[k].alpha = planes.back().Latest().Alpha();
     mapped[k].point = ends[k][0];
     mapped[k].known = Known::kLine;
@@ -400,7 +400,7 @@ TEST(GlobalMap, AGroupMadeAfterTheMotionModelIsPlacedFromAPoseTheWallsFixed) {
   // not from the pose the motion model held, 1 m behind.
   const auto sensor_x = [](int64_t k) { return 0.05 * static_cast<double>(k); };
   const auto seen_from = [](double x, const Vector2d& a, const Vector2d& b, int64_t k) {
-    return *MakeObservation(Wall(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
+    return *MakeObservation(WallSeen(a - Vector2d(x, 0), b - Vector2d(x, 0)), k, 0.3);
   };
   const Vector2d left0(-1, 1), left1(9, 1), piece0(3, -1), piece1(5, -1), jamb0(6, -1),
       jamb1(6, -1.3);
@@ -549,8 +549,8 @@ TEST(MarkViewCuts, SightingsKeptByGroupsAreCutWithTheirObservations) {
 
 TEST(Mapper, RepeatedOrOldIterationsAreIgnored) {
   Mapper mapper;
-  mapper.Process(5, {Wall({3, -1}, {3, 1})});
-  const PoseEstimate est = mapper.Process(5, {Wall({3, -1}, {3, 1})});
+  mapper.Process(5, {WallSeen({3, -1}, {3, 1})});
+  const PoseEstimate est = mapper.Process(5, {WallSeen({3, -1}, {3, 1})});
   EXPECT_EQ(est.status, PoseStatus::kLost);
   EXPECT_EQ(mapper.State().store.planes.at(0).Count(), 1);
 }

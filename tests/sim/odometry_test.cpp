@@ -7,10 +7,12 @@
 #include <cmath>
 #include <vector>
 
+#include "angles.hpp"
+
 namespace relplane::sim {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
+using testing::kDeg;
 
 OdometryOptions Quiet() {
   OdometryOptions o;

@@ -9,14 +9,15 @@
 #include <limits>
 #include <random>
 
+#include "angles.hpp"
 #include "relplane/sim/generators.hpp"
 #include "relplane/sim/world.hpp"
 
 namespace relplane::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
+using testing::kDeg;
+using testing::kPi;
 
 RayGrid SmallGrid() { return RayGrid::Pinhole(32, 24, 90 * kDeg, 60 * kDeg); }
 

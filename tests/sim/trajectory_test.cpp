@@ -7,10 +7,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "angles.hpp"
+
 namespace relplane::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 
 TrajectoryOptions Square(double side) {
   TrajectoryOptions o;

@@ -8,13 +8,14 @@
 #include <cmath>
 #include <set>
 
+#include "angles.hpp"
 #include "relplane/sim/ray_caster.hpp"
 #include "relplane/sim/simulation.hpp"
 
 namespace relplane::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 
 World Build(GeneratorSpec generator) {
   WorldOptions options;

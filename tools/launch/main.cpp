@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <regex>
 
 #include "bus_url.hpp"
 #include "log_merge.hpp"
@@ -112,6 +111,22 @@ Cast FindCast(const Request& request, const Resolved& scenario) {
   return cast;
 }
 
+// `text` with each `path`, and the :LINE:COLUMN numbers after it, replaced by `by`. (Hand-written
+// rather than std::regex, which costs about 5 s of -O3 to compile.)
+std::string ReplacePath(const std::string& text, const std::string& path, const std::string& by) {
+  std::string out;
+  size_t from = 0;
+  for (size_t at = text.find(path); at != std::string::npos; at = text.find(path, from)) {
+    out.append(text, from, at - from).append(by);
+    from = at + path.size();
+    while (from + 1 < text.size() && text[from] == ':' && text[from + 1] >= '0' &&
+           text[from + 1] <= '9') {
+      from = std::min(text.find_first_not_of("0123456789", from + 1), text.size());
+    }
+  }
+  return out.append(text, from, std::string::npos);
+}
+
 // Each service checks its section: the file as written, then (if changed) the resolved text.
 void CheckWithServices(const Request& request, const Resolved& scenario, const Cast& cast) {
   CheckConfig(cast.checkers, request.scenario, "");
@@ -126,9 +141,8 @@ void CheckWithServices(const Request& request, const Resolved& scenario, const C
   } catch (const SetupError& e) {
     unlink(temp);
     // The services name the temporary file: name the scenario, whose key their message names.
-    const std::regex temp_file(std::string(temp) + "(:[0-9]+)*");
     throw SetupError(
-        std::regex_replace(e.what(), temp_file, request.scenario + " (after the --set overrides)"));
+        ReplacePath(e.what(), temp, request.scenario + " (after the --set overrides)"));
   } catch (...) {
     unlink(temp);
     throw;

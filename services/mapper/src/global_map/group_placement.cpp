@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "eigen_solver_2d.hpp"
 #include "global_map/relative_map.hpp"
 #include "localisation/least_squares.hpp"
 

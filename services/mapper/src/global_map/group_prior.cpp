@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "eigen_solver_2d.hpp"
 #include "global_map/global_map.hpp"
 #include "localisation/pose_solver.hpp"
 

@@ -1,8 +1,9 @@
 #include "global_map/loop_closure.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+
+#include "eigen_solver_2d.hpp"
 
 namespace relplane::mapper {
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "comparison/comparison.hpp"
+#include "eigen_solver_2d.hpp"
 #include "global_map/relative_map.hpp"
 #include "localisation/pose_solver.hpp"
 

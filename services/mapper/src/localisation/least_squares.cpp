@@ -1,6 +1,6 @@
 #include "localisation/least_squares.hpp"
 
-#include <Eigen/Eigenvalues>
+#include "eigen_solver_2d.hpp"
 
 namespace relplane::mapper {
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "comparison/comparison.hpp"
+#include "eigen_solver_2d.hpp"
 #include "global_map/relative_map.hpp"
 
 namespace relplane::mapper {
