@@ -10,8 +10,8 @@ Localiser::Localiser(const MapperOptions& options)
     : options_(options.localisation),
       fit_(options.fit),
       max_coast_(options.motion.max_coast),
-      turn_rate_(options.motion.turn_rate),
-      start_{options.start_pose.x, options.start_pose.y, options.start_pose.yaw} {}
+      start_{options.start_pose.x, options.start_pose.y, options.start_pose.yaw},
+      turn_rate_(options.motion.turn_rate) {}
 
 std::vector<Sighting> Localiser::Sightings(const LocaliserFrame& frame, const PlaneStore& store,
                                            const WorldMap& world, bool initializing) const {
