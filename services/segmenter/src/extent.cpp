@@ -252,6 +252,15 @@ std::vector<LineRefit> LineRefits(const std::vector<EmPlane>& planes,
   return refits;
 }
 
+// Per mixture plane: whether it formed a kept piece (Description::plane_has_piece).
+std::vector<uint8_t> PlanesWithPieces(const std::vector<Piece>& pieces, size_t num_planes) {
+  std::vector<uint8_t> has_piece(num_planes, 0);
+  for (const Piece& p : pieces) {
+    if (p.kept) has_piece[p.plane] = 1;
+  }
+  return has_piece;
+}
+
 }  // namespace
 
 PieceWorkspace::PieceWorkspace() : buffers_(std::make_unique<Buffers>()) {}
@@ -290,11 +299,7 @@ std::vector<uint8_t> FormPieces(const DescribeRequest& request, const Options& o
     p.cell_spread = half * (std::fabs(p.out.normal.dot(g.u)) + std::fabs(p.out.normal.dot(g.v)));
     p.normal_spread = std::fabs(p.out.normal.dot(g.n));
   }
-  std::vector<uint8_t> has_piece(planes.size(), 0);
-  for (const Piece& p : pieces) {
-    if (p.kept) has_piece[p.plane] = 1;
-  }
-  return has_piece;
+  return PlanesWithPieces(pieces, planes.size());
 }
 
 Description DescribePieces(const DescribeRequest& request, const Options& options,
@@ -314,10 +319,7 @@ Description DescribeFormedPieces(const DescribeRequest& request, const Options& 
   PieceWorkspace::Buffers& w = workspace->Get();
   std::vector<Piece>& pieces = w.pieces;
   if (piece_labels) piece_labels->assign(cloud.size(), -1);
-  result.plane_has_piece.assign(planes.size(), 0);
-  for (const Piece& p : pieces) {
-    if (p.kept) result.plane_has_piece[p.plane] = 1;
-  }
+  result.plane_has_piece = PlanesWithPieces(pieces, planes.size());
   MarkOuterCells(static_cast<int>(pieces.size()), &w);
   PlanSecondPass(&w, &pieces);
   TrimAndExtend(cloud, options, &w, &pieces, piece_labels);
