@@ -76,6 +76,7 @@ MapperOptions ReadMapperOptions(Reader& r) {
   back.Read("open_margin", &o.backtrack.open_margin);
   back.Read("min_overlap", &o.backtrack.min_overlap);
   back.Read("line_max_angle", &o.backtrack.line_max_angle);
+  back.Read("same_surface", &o.backtrack.same_surface);
 
   Reader grp = r.Child("grouping");
   grp.Read("min_observations", &o.grouping.min_observations);

@@ -54,7 +54,11 @@ ClosingLoop Backtrack(const RegistrationFrame& frame, const std::vector<Observat
   int64_t oldest = -1;  // the oldest group placing a wall matched by backtracking
   for (size_t k = 0; k < observations.size(); ++k) {
     if (match[k] >= 0) continue;
-    match[k] = MatchGlobal(observations[k], pose, store, grouping, world, trajectory, taken,
+    std::vector<const Observation*> others;
+    for (size_t j = 0; j < observations.size(); ++j) {
+      if (j != k) others.push_back(&observations[j]);
+    }
+    match[k] = MatchGlobal(observations[k], others, pose, store, grouping, world, trajectory, taken,
                            options.backtrack, options.fit);
     if (match[k] < 0) continue;
     taken.insert(match[k]);

@@ -75,6 +75,10 @@ struct BacktrackOptions {
   // rad: for a wall known by its line only, how far the sighting may turn from it, besides the
   // blur of a short piece's fit (backtracking.cpp)
   double line_max_angle = 0.035;
+  // m: of two parallel planes of one frame that both pass the tests for a mapped wall, one nearer
+  // its line by more than this is the wall and the other a surface beside it (a few times a
+  // line's noise, well below a jamb's or a recess's depth)
+  double same_surface = 0.05;
 };
 
 // §II.B grouping.
