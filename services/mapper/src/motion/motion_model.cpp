@@ -43,7 +43,11 @@ bool MotionModel::LearningStretch(const Trajectory& trajectory, const geometry::
 bool MotionModel::MedianStep(const Trajectory& trajectory, int64_t i0, int64_t i1,
                              double* step) const {
   // The median of the steps between consecutive fixed poses, not the way from the first to the
-  // last: a fixed pose that the walls set right is not motion.
+  // last: a fixed pose that the walls set right is not motion. Nor a step taken while turning on
+  // the spot (judged over the iterations either side, as a heading from short walls wobbles by
+  // a turn's step from one iteration to the next): the sensor stands still there, and the
+  // stretch that ends a turn and starts the next leg would learn the leg's speed as the median
+  // of the turn's noughts and the leg's first steps (§II.E).
   const std::set<int64_t>& fixed = trajectory.fixed;
   const auto& poses = trajectory.poses;
   std::vector<double> steps;
@@ -51,6 +55,10 @@ bool MotionModel::MedianStep(const Trajectory& trajectory, int64_t i0, int64_t i
     const int64_t j = *std::next(k);
     auto a = poses.find(*k), b = poses.find(j);
     if (j - *k > 2 || a == poses.end() || b == poses.end()) continue;
+    auto before = poses.find(*k - 1), after = poses.find(j + 1);
+    if (before == poses.end()) before = a;
+    if (after == poses.end()) after = b;
+    if (Turning(before->second, after->second, after->first - before->first)) continue;
     const Eigen::Vector2d d = b->second.Rotation().inverse() *
                               (b->second.Translation() - a->second.Translation()) /
                               static_cast<double>(j - *k);
