@@ -90,6 +90,19 @@ TEST(MotionModelUnit, ATurnsStepsDoNotSlowTheLegAfterIt) {
   EXPECT_NEAR((m.predicted.Translation() - last.Translation()).norm(), 0.033, 1e-9);
 }
 
+// ... and a stretch that is all turn on the spot stands still, known: the turn's steps are its
+// only steps (generated world 143: taken for no motion known, the held position was moved on by
+// wall ends seen from earlier poses, 1.3 cm off).
+TEST(MotionModelUnit, AStretchThatIsAllTurnStandsStill) {
+  Trajectory t;
+  for (int k = 0; k < 20; ++k) t.Record(k, {1.0, 2.0, 0.035 * k}, true);
+  const geometry::Pose2 last = t.poses.at(19);
+  const Motion m = Model().Predict(t, last, 19, 20);
+  EXPECT_TRUE(m.known);
+  EXPECT_EQ(m.predicted.x, last.x);
+  EXPECT_EQ(m.predicted.y, last.y);
+}
+
 // The turn's rate is known whether or not a velocity is: turning on the spot from the start,
 // nothing fixed yet.
 TEST(MotionModelUnit, AFirstTurnOnTheSpotHasItsRateBeforeAnyVelocityIsLearnt) {

@@ -47,10 +47,12 @@ bool MotionModel::MedianStep(const Trajectory& trajectory, int64_t i0, int64_t i
   // the spot (judged over the iterations either side, as a heading from short walls wobbles by
   // a turn's step from one iteration to the next): the sensor stands still there, and the
   // stretch that ends a turn and starts the next leg would learn the leg's speed as the median
-  // of the turn's noughts and the leg's first steps (§II.E).
+  // of the turn's noughts and the leg's first steps (§II.E). A stretch that is all turn stood
+  // still.
   const std::set<int64_t>& fixed = trajectory.fixed;
   const auto& poses = trajectory.poses;
   std::vector<double> steps;
+  bool turned = false;
   for (auto k = fixed.lower_bound(i0); k != fixed.end() && *k < i1; ++k) {
     const int64_t j = *std::next(k);
     auto a = poses.find(*k), b = poses.find(j);
@@ -58,12 +60,16 @@ bool MotionModel::MedianStep(const Trajectory& trajectory, int64_t i0, int64_t i
     auto before = poses.find(*k - 1), after = poses.find(j + 1);
     if (before == poses.end()) before = a;
     if (after == poses.end()) after = b;
-    if (Turning(before->second, after->second, after->first - before->first)) continue;
+    if (Turning(before->second, after->second, after->first - before->first)) {
+      turned = true;
+      continue;
+    }
     const Eigen::Vector2d d = b->second.Rotation().inverse() *
                               (b->second.Translation() - a->second.Translation()) /
                               static_cast<double>(j - *k);
     steps.push_back(d.x());
   }
+  if (steps.empty() && turned) steps.push_back(0.0);
   if (steps.empty()) return false;
   std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
   *step = steps[steps.size() / 2];
