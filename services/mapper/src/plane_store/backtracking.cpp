@@ -12,11 +12,11 @@ namespace relplane::mapper {
 namespace {
 
 // The tests of §II.A for `obs` (seen from `pose`) against mapped wall `id`: its score, or a
-// negative number where it fails them; `dist` is its distance from the mapped line.
-double Fit(const Observation& obs, const geometry::Pose2& pose, int64_t id, const Placement& placed,
-           const PlaneStore& store, const Grouping& grouping, const WorldMap& world,
-           const Trajectory& trajectory, const BacktrackOptions& options, const FitOptions& fit,
-           double* dist_out) {
+// negative number where it fails them; `dist_out` is its distance from the mapped line.
+double FitToMapped(const Observation& obs, const geometry::Pose2& pose, int64_t id,
+                   const Placement& placed, const PlaneStore& store, const Grouping& grouping,
+                   const WorldMap& world, const Trajectory& trajectory,
+                   const BacktrackOptions& options, const FitOptions& fit, double* dist_out) {
   const double alpha = geometry::WrapAngle(pose.yaw + obs.Alpha());
   const Eigen::Vector2d e0 = pose * obs.edge[0], e1 = pose * obs.edge[1];
   // Walls with a mapped line at least: an orientation alone has no place to compare with.
@@ -102,7 +102,7 @@ int64_t MatchGlobal(const Observation& obs, const std::vector<const Observation*
     if (taken.count(id)) continue;
     double dist = 0.0;
     const double score =
-        Fit(obs, pose, id, placed, store, grouping, world, trajectory, options, fit, &dist);
+        FitToMapped(obs, pose, id, placed, store, grouping, world, trajectory, options, fit, &dist);
     if (score < 0.0) continue;
     // One surface per mapped wall in a frame (§II.A): where another of this frame's planes lies
     // on the wall's line, nearer it by more than a line's noise, that one is the wall and this
@@ -112,8 +112,8 @@ int64_t MatchGlobal(const Observation& obs, const std::vector<const Observation*
     bool nearer = false;
     for (const Observation* other : others) {
       double other_dist = 0.0;
-      nearer = Fit(*other, pose, id, placed, store, grouping, world, trajectory, options, fit,
-                   &other_dist) >= 0.0 &&
+      nearer = FitToMapped(*other, pose, id, placed, store, grouping, world, trajectory, options,
+                           fit, &other_dist) >= 0.0 &&
                other_dist + options.same_surface < dist;
       if (nearer) break;
     }
