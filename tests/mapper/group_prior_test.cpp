@@ -322,6 +322,17 @@ TEST(GroupPrior, AGroupWhoseEndsTheViewCutWhenItWasMadeIsPlacedFromTheEndsSeenSi
   ExpectSidesSeenSincePlacedAtTheirEnds(&state, 7, 1.5, true, 10, 12, 6);
 }
 
+TEST(GroupPrior, AGroupWhoseEndsNoFixedPoseSawIsPlacedFromTheLatestSightingOfThem) {
+  // As above, but the walls fix no pose after iteration 6: from iteration 10 on the sides' ends
+  // are seen at x = 3 from poses the motion model (or odometry) carried (§II.E). No fixed pose saw
+  // those ends and no earlier build placed them, so the latest sighting whose end the view did
+  // not cut places the group: the first, cut one lies anywhere short of the end (in the hallway
+  // loop with odometry, a side wall first seen where the 8 m range cut it put the first group, and
+  // every pose after it, 5 m back along the hallway).
+  MapperState state = DrivingAlongX(12, 6);
+  ExpectSidesSeenSincePlacedAtTheirEnds(&state, 7, 1.5, true, 10, 12, 6);
+}
+
 TEST(GroupPrior, AGroupMadeWhileTheMotionModelCarriedThePoseIsPlacedFromTheEndsSeenSince) {
   // Driving along x at 0.1 m an iteration. Group 1, made at iteration 6, knows the far ends
   // (x = 3) of the hallway's two sides and the end wall x = 4 by its orientation only: its

@@ -19,8 +19,10 @@ void ClipLinear(double f0, double f1, double* lo, double* hi) {
     return;
   }
   const double s = f0 / (f0 - f1);
-  if (f0 > 0) *lo = std::max(*lo, s);
-  else *hi = std::min(*hi, s);
+  if (f0 > 0)
+    *lo = std::max(*lo, s);
+  else
+    *hi = std::min(*hi, s);
 }
 
 // Does the segment from the origin to p cross wall w (sensor frame) before p?
@@ -33,6 +35,30 @@ bool Blocked(const Vector2d& p, const Vector2d& a, const Vector2d& b) {
   return t > 1e-6 && t < 1.0 - 1e-6 && u >= 0.0 && u <= 1.0;
 }
 
+// The rays of the frustum's grid that hit the wall from p0 to p1 between heights z0 and z1
+// (sensor frame): what a depth sensor's plane would count as its support.
+int RaysOnWall(const Frustum& f, const Vector2d& p0, const Vector2d& p1, double z0, double z1) {
+  const double az_step = f.hfov / f.columns, el_step = f.vfov / f.rows;
+  const Vector2d s = p1 - p0;
+  int rays = 0;
+  for (int k = 0; k < f.columns; ++k) {
+    const double az = -0.5 * f.hfov + (k + 0.5) * az_step;
+    const Vector2d u(std::cos(az), std::sin(az));
+    const double den = Cross(u, s);
+    if (std::abs(den) < 1e-12) continue;
+    const double r = Cross(p0, s) / den;  // horizontal range along the ray
+    const double along = Cross(p0, u) / den;
+    if (r <= 0.0 || along < 0.0 || along > 1.0) continue;
+    // Rows whose elevation, at the grid's centres, lies between the wall's bottom and top.
+    const double lo = (std::atan2(z0, r) + 0.5 * f.vfov) / el_step - 0.5;
+    const double hi = (std::atan2(z1, r) + 0.5 * f.vfov) / el_step - 0.5;
+    const int first = std::max(0, static_cast<int>(std::ceil(lo)));
+    const int last = std::min(f.rows - 1, static_cast<int>(std::floor(hi)));
+    rays += std::max(0, last - first + 1);
+  }
+  return rays;
+}
+
 }  // namespace
 
 PlaneInput WallSeen(const Vector2d& p0, const Vector2d& p1) {
@@ -43,8 +69,8 @@ PlaneInput WallSeen(const Vector2d& p0, const Vector2d& p1) {
   in.normal = Eigen::Vector3d(n.x(), n.y(), 0);
   in.d = -n.dot(p0);
   in.centroid = Eigen::Vector3d(0.5 * (p0 + p1).x(), 0.5 * (p0 + p1).y(), 0);
-  in.vertices = {{p0.x(), p0.y(), -1}, {p1.x(), p1.y(), -1}, {p1.x(), p1.y(), 1},
-                 {p0.x(), p0.y(), 1}};
+  in.vertices = {
+      {p0.x(), p0.y(), -1}, {p1.x(), p1.y(), -1}, {p1.x(), p1.y(), 1}, {p0.x(), p0.y(), 1}};
   return in;
 }
 
@@ -125,15 +151,16 @@ std::vector<Seen> IdealSegmenter::Observe(const geometry::Pose2& pose) {
     Vector2d n(-t.y(), t.x());
     if (n.dot(mid) > 0) n = -n;  // towards the sensor: n . 0 + d > 0 with d = -n . mid
     const Vector2d e0 = mid + l0 * t, e1 = mid + l1 * t;
-    const double z0 = world_.walls[i].z0 - frustum_.height, z1 = world_.walls[i].z1 - frustum_.height;
+    const double z0 = world_.walls[i].z0 - frustum_.height,
+                 z1 = world_.walls[i].z1 - frustum_.height;
     Seen s;
     s.wall = static_cast<int>(i);
     s.plane.normal = Eigen::Vector3d(n.x(), n.y(), 0.0);
     s.plane.d = -n.dot(mid);
     s.plane.centroid = Eigen::Vector3d(mid.x(), mid.y(), 0.5 * (z0 + z1));
-    s.plane.vertices = {{e0.x(), e0.y(), z0}, {e1.x(), e1.y(), z0}, {e1.x(), e1.y(), z1},
-                        {e0.x(), e0.y(), z1}};
-    s.plane.support = static_cast<int>(len * 100);
+    s.plane.vertices = {
+        {e0.x(), e0.y(), z0}, {e1.x(), e1.y(), z0}, {e1.x(), e1.y(), z1}, {e0.x(), e0.y(), z1}};
+    s.plane.support = RaysOnWall(frustum_, pa + s0 * dir, pa + s1 * dir, z0, z1);
     s.plane.rms = noise_.offset;
     seen.push_back(std::move(s));
   }
@@ -194,7 +221,7 @@ World HallwayWithDoors(double length, double width) {
     const double offset = side > 0 ? 2.0 : 3.5;
     for (double door = x0 + offset; door + 1.0 < x1; door += 3.0) {
       w.walls.push_back({{x, side * y}, {door, side * y}});
-      w.walls.push_back({{door, side * y}, {door, side * (y + 0.3)}});        // jamb
+      w.walls.push_back({{door, side * y}, {door, side * (y + 0.3)}});  // jamb
       w.walls.push_back({{door + 1.0, side * y}, {door + 1.0, side * (y + 0.3)}});
       x = door + 1.0;
     }
@@ -272,8 +299,8 @@ World HallwayLoop(double sx, double sy, double width, double recess_spacing) {
   return w;
 }
 
-RunResult Run(Mapper& mapper, IdealSegmenter& segmenter,
-              const std::vector<geometry::Pose2>& poses, const OdometryFn& odometry) {
+RunResult Run(Mapper& mapper, IdealSegmenter& segmenter, const std::vector<geometry::Pose2>& poses,
+              const OdometryFn& odometry) {
   RunResult r;
   double sum = 0.0, sum_yaw = 0.0;
   for (size_t k = 0; k < poses.size(); ++k) {
@@ -302,8 +329,8 @@ RunResult Run(Mapper& mapper, IdealSegmenter& segmenter,
     double best_angle = 0.0;
     for (size_t w = 0; w < world.walls.size(); ++w) {
       const geometry::Segment2 seg{world.walls[w].a, world.walls[w].b};
-      const double angle = std::abs(std::asin(std::clamp(
-          Cross(seg.Direction(), (m1 - m0).normalized()), -1.0, 1.0)));
+      const double angle = std::abs(
+          std::asin(std::clamp(Cross(seg.Direction(), (m1 - m0).normalized()), -1.0, 1.0)));
       if (angle > 0.2) continue;
       const Vector2d n = seg.Normal();
       const double dist = std::max(std::abs(n.dot(m0 - seg.a)), std::abs(n.dot(m1 - seg.a)));

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "relplane/common/geometry.hpp"
 #include "localisation/pose_solver.hpp"
 #include "plane_store/observation.hpp"
+#include "relplane/common/geometry.hpp"
 #include "relplane/mapper/mapper.hpp"
 #include "state.hpp"
 
@@ -38,6 +38,11 @@ struct Frustum {
   double range = 8.0;        // m, horizontal
   double height = 1.0;       // sensor height above the floor
   double min_length = 0.15;  // m: shorter visible parts are not reported
+  // The rays a plane's support counts: a grid of `columns` x `rows` evenly spread over hfov and
+  // vfov, as the simulator's default 160 x 120 depth sensor over 90 x 60 degrees.
+  int columns = 160;
+  int rows = 120;
+  double vfov = M_PI / 3.0;  // rad
 };
 
 struct Noise {
@@ -79,24 +84,24 @@ std::vector<geometry::Pose2> Drive(const std::vector<Eigen::Vector2d>& waypoints
 // Worlds used by the tests.
 World StraightHallway(double length = 8.5, double width = 2.0);  // closed, from x = -1
 World HallwayWithDoors(double length = 14.0, double width = 2.0);
-World Office();       // 2 x 2 rooms joined by doors with jambs
+World Office();  // 2 x 2 rooms joined by doors with jambs
 // A rectangular loop of hallway (the paper's Fig. 5), centre line from (0,0); with door
 // recesses on the outer walls every `recess_spacing` m (0: none).
 World HallwayLoop(double sx = 16.0, double sy = 10.0, double width = 2.0,
                   double recess_spacing = 0.0);
 
 struct RunResult {
-  double ate_rmse = 0.0;     // m, x-y
-  double yaw_rmse = 0.0;     // rad
-  double end_error = 0.0;    // m, worst wall-end error over mapped walls with both ends known
+  double ate_rmse = 0.0;       // m, x-y
+  double yaw_rmse = 0.0;       // rad
+  double end_error = 0.0;      // m, worst wall-end error over mapped walls with both ends known
   double end_error_any = 0.0;  // m, worst error of the mapped ends that coincide with true ends
-  double angle_error = 0.0;  // rad, worst
+  double angle_error = 0.0;    // rad, worst
   int mapped = 0;
-  int duplicates = 0;        // mapped walls beyond one per true wall
-  int unmatched = 0;         // mapped walls matching no true wall
-  int motion_model = 0;      // poses with status MOTION_MODEL
+  int duplicates = 0;    // mapped walls beyond one per true wall
+  int unmatched = 0;     // mapped walls matching no true wall
+  int motion_model = 0;  // poses with status MOTION_MODEL
   int lost = 0;
-  double max_error = 0.0;    // m, worst pose error
+  double max_error = 0.0;     // m, worst pose error
   std::string duplicate_ids;  // per duplicated true wall: the mapped ids on it
 };
 
@@ -104,8 +109,8 @@ struct RunResult {
 using OdometryFn = std::function<std::optional<OdometryIncrement>(size_t k)>;
 
 // Runs the mapper over the trajectory and scores it against the world.
-RunResult Run(Mapper& mapper, IdealSegmenter& segmenter,
-              const std::vector<geometry::Pose2>& poses, const OdometryFn& odometry = nullptr);
+RunResult Run(Mapper& mapper, IdealSegmenter& segmenter, const std::vector<geometry::Pose2>& poses,
+              const OdometryFn& odometry = nullptr);
 
 std::string Describe(const RunResult& r);
 

@@ -9,26 +9,15 @@
 #include <vector>
 
 #include "localisation/pose_solver.hpp"
+#include "sampled_walls.hpp"
 
 namespace relplane::mapper {
 namespace {
 
 using Eigen::Vector2d;
-
-// A wall observation in the sensor frame: the line with normal angle `normal_angle`, offset
-// d, visible from `along0` to `along1`, fitted to `support` points with residual `rms`.
-Observation Seen(double normal_angle, double d, double along0, double along1, int support,
-                 double rms) {
-  Observation obs;
-  obs.normal = {std::cos(normal_angle), std::sin(normal_angle)};
-  obs.d = d;
-  const Vector2d foot = -d * obs.normal, t = obs.Direction();
-  obs.edge[0] = foot + along0 * t;
-  obs.edge[1] = foot + along1 * t;
-  obs.support = support;
-  obs.rms = rms;
-  return obs;
-}
+using testing::SampledFrustum;
+using testing::SampledWall;
+using testing::WallOnLine;
 
 TEST(OrientationSigma, MatchesTheSpreadOfLeastSquaresLineFits) {
   // Independent check: fit lines to noisy points spread evenly over 0.5 m, many times.
@@ -48,11 +37,11 @@ TEST(OrientationSigma, MatchesTheSpreadOfLeastSquaresLineFits) {
     sum2 += slope * slope;
   }
   const double measured = std::sqrt(sum2 / trials);
-  const Observation obs = Seen(M_PI, 2.0, -0.25, 0.25, n, noise);
+  const Observation obs = WallOnLine(M_PI, 2.0, -0.25, 0.25, n, noise);
   EXPECT_NEAR(OrientationSigma(obs), measured, 0.05 * measured);
   // An exact fit is exact; too few points say nothing.
-  EXPECT_EQ(OrientationSigma(Seen(M_PI, 2.0, -0.25, 0.25, n, 0.0)), 0.0);
-  EXPECT_TRUE(std::isinf(OrientationSigma(Seen(M_PI, 2.0, -0.25, 0.25, 2, noise))));
+  EXPECT_EQ(OrientationSigma(WallOnLine(M_PI, 2.0, -0.25, 0.25, n, 0.0)), 0.0);
+  EXPECT_TRUE(std::isinf(OrientationSigma(WallOnLine(M_PI, 2.0, -0.25, 0.25, 2, noise))));
 }
 
 // Sightings of walls mapped where `seen` shows them from the origin, known by their lines;
@@ -81,9 +70,9 @@ TEST(Localisation, AShortNoisyWallDoesNotTurnTheHeading) {
   const double jamb_error = 5.0 * M_PI / 180.0;
   // Sensor at the origin facing +x; walls in the sensor frame (the map is the same frame).
   std::vector<Observation> seen = {
-      Seen(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005),     // left wall, y = 1
-      Seen(M_PI, 4.0, -1.0, 1.0, 3000, 0.005),          // end wall, x = 4
-      Seen(jamb_error, 1.5, -0.05, 0.05, 300, 0.005)};  // jamb, x = -1.5
+      WallOnLine(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005),     // left wall, y = 1
+      WallOnLine(M_PI, 4.0, -1.0, 1.0, 3000, 0.005),          // end wall, x = 4
+      WallOnLine(jamb_error, 1.5, -0.05, 0.05, 300, 0.005)};  // jamb, x = -1.5
   for (Observation& obs : seen) obs.iteration = 1;
   std::vector<Observation> mapped = seen;
   mapped[2].normal = {1.0, 0.0};  // the jamb's true orientation on the map
@@ -110,8 +99,8 @@ TEST(Localisation, TheHeadingErrorOfAShortPieceIncludesItsBias) {
     const std::vector<Sighting> sightings = WhereSeen(seen, &planes);
     return Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {}, FitOptions{}).yaw_sigma;
   };
-  Observation jamb = Seen(M_PI, 1.5, -0.075, 0.075, 1000, 0.005);   // 0.15 m, x = 1.5
-  Observation wall = Seen(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005);  // 4 m, y = 1
+  Observation jamb = WallOnLine(M_PI, 1.5, -0.075, 0.075, 1000, 0.005);   // 0.15 m, x = 1.5
+  Observation wall = WallOnLine(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005);  // 4 m, y = 1
   jamb.iteration = wall.iteration = 1;
   ASSERT_LT(OrientationSigma(jamb), 0.01);
   EXPECT_NEAR(heading_error({jamb}), std::hypot(OrientationSigma(jamb), std::atan2(0.03, 0.15)),
@@ -129,7 +118,7 @@ TEST(Localisation, TheHeadingErrorOfAShortPieceIncludesItsBias) {
 // room.
 TEST(Localisation, ALoneSliverTurnsTheHeadingOnlyByWhatItShowsBeyondThePrior) {
   const double off = 11.0 * M_PI / 180.0;
-  std::vector<Observation> seen = {Seen(M_PI + off, 6.0, -0.085, 0.085, 800, 0.06)};
+  std::vector<Observation> seen = {WallOnLine(M_PI + off, 6.0, -0.085, 0.085, 800, 0.06)};
   seen[0].iteration = 1;
   std::vector<Observation> mapped = seen;
   mapped[0].normal = {-1.0, 0.0};  // where the map has it: x = 6
@@ -155,7 +144,7 @@ TEST(Localisation, ALoneSliverTurnsTheHeadingOnlyByWhatItShowsBeyondThePrior) {
 // the gate: the motion changed (a turn starts). Nor does it touch a pose the walls fix.
 TEST(Localisation, AHeadingPriorFarFromWellFittedWallsOrWhereTheyFixThePoseIsNotUsed) {
   const double turn = 3.0 * M_PI / 180.0;
-  std::vector<Observation> seen = {Seen(-M_PI / 2 + turn, 1.0, -1.0, 3.0, 4000, 0.005)};
+  std::vector<Observation> seen = {WallOnLine(-M_PI / 2 + turn, 1.0, -1.0, 3.0, 4000, 0.005)};
   seen[0].iteration = 1;
   std::vector<Observation> mapped = seen;
   mapped[0].normal = {0.0, -1.0};  // y = 1 on the map
@@ -169,8 +158,8 @@ TEST(Localisation, AHeadingPriorFarFromWellFittedWallsOrWhereTheyFixThePoseIsNot
   ASSERT_EQ(one_wall.status, PoseStatus::kMotionModel);
   EXPECT_NEAR(std::abs(one_wall.pose.yaw), turn, 1e-6);
 
-  std::vector<Observation> corner = {Seen(-M_PI / 2 + 0.001, 1.0, -1.0, 3.0, 4000, 0.005),
-                                     Seen(M_PI + 0.001, 4.0, -1.0, 1.0, 3000, 0.005)};
+  std::vector<Observation> corner = {WallOnLine(-M_PI / 2 + 0.001, 1.0, -1.0, 3.0, 4000, 0.005),
+                                     WallOnLine(M_PI + 0.001, 4.0, -1.0, 1.0, 3000, 0.005)};
   for (Observation& obs : corner) obs.iteration = 1;
   std::vector<Observation> corner_mapped = corner;
   corner_mapped[0].normal = {0.0, -1.0};
@@ -191,10 +180,10 @@ TEST(Localisation, AHeadingPriorFarFromWellFittedWallsOrWhereTheyFixThePoseIsNot
 // without it; 10 cm could be one, and it is kept.
 PoseEstimate WithOneWallMappedOff(double mapped_off) {
   std::vector<Observation> seen = {
-      Seen(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005),  // left wall
-      Seen(M_PI / 2, 1.0, -3.0, -1.0, 4000, 0.005),  // right wall, near piece (x from 1 to 3)
-      Seen(M_PI / 2, 1.0, -3.5, -3.0, 1000, 0.005),  // right wall, far piece
-      Seen(M_PI, 4.0, -1.0, 1.0, 3000, 0.005)};      // end wall
+      WallOnLine(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005),  // left wall
+      WallOnLine(M_PI / 2, 1.0, -3.0, -1.0, 4000, 0.005),  // right wall, near piece (x from 1 to 3)
+      WallOnLine(M_PI / 2, 1.0, -3.5, -3.0, 1000, 0.005),  // right wall, far piece
+      WallOnLine(M_PI, 4.0, -1.0, 1.0, 3000, 0.005)};      // end wall
   for (Observation& obs : seen) obs.iteration = 1;
   std::vector<RltPlane> planes;
   std::vector<Sighting> sightings = WhereSeen(seen, &planes);
@@ -225,7 +214,7 @@ TEST(Localisation, AWallFixesThePositionWhereItsPointsAreNotWhereItsLineIsExtrap
   sliver.edge[1] = middle + 0.05 * side * t;
   sliver.support = 100;
   sliver.rms = 0.005;
-  std::vector<Observation> seen = {Seen(M_PI, 4.0, -1.0, 1.0, 3000, 0.005), sliver};
+  std::vector<Observation> seen = {WallOnLine(M_PI, 4.0, -1.0, 1.0, 3000, 0.005), sliver};
   for (Observation& obs : seen) obs.iteration = 1;
   std::vector<RltPlane> planes;
   for (size_t k = 0; k < seen.size(); ++k) {
@@ -246,31 +235,6 @@ TEST(Localisation, AWallFixesThePositionWhereItsPointsAreNotWhereItsLineIsExtrap
   EXPECT_NEAR(est.pose.y, 0.0, 0.002);
 }
 
-// A wall from `along0` to `along1` on its line (normal angle `normal_angle`, offset d), from
-// z0 to z1 in the sensor frame, as a sensor whose rays lie on a grid of `step` in azimuth and
-// elevation samples it: its support is the rays that hit it, counted (not from its solid angle).
-Observation SampledWall(double normal_angle, double d, double along0, double along1, double z0,
-                        double z1, double step) {
-  Observation obs = Seen(normal_angle, d, along0, along1, 0, 0.005);
-  obs.z_min = z0;
-  obs.z_max = z1;
-  int hits = 0;
-  for (double az = -M_PI; az < M_PI; az += step) {
-    const Vector2d u(std::cos(az), std::sin(az));
-    const double towards = -obs.normal.dot(u);
-    if (towards <= 1e-9) continue;
-    const double r = d / towards;  // horizontal range to the wall's line along this azimuth
-    const double s = obs.Direction().dot(r * u - obs.edge[0]);
-    if (s < 0.0 || s > (obs.edge[1] - obs.edge[0]).norm()) continue;
-    for (double el = -M_PI / 2; el < M_PI / 2; el += step) {
-      const double z = r * std::tan(el);
-      hits += z >= z0 && z <= z1;
-    }
-  }
-  obs.support = hits;
-  return obs;
-}
-
 TEST(LearnedFrustum, LearnsTheAngularStepFromTheWallsItSees) {
   const double step = 0.006;  // rad
   LearnedFrustum frustum;
@@ -287,23 +251,12 @@ TEST(LearnedFrustum, LearnsTheAngularStepFromTheWallsItSees) {
               1e-9);
 }
 
-// A frustum 45 degrees either side that has learnt an angular step of 6 mrad from walls ahead.
-LearnedFrustum SampledFrustum() {
-  LearnedFrustum frustum;
-  for (int k = 0; k < 64; ++k) {
-    frustum.ObserveSampling(SampledWall(M_PI, 1.0 + 0.05 * k, -1.0, 1.0, -1.2, 1.4, 0.006));
-  }
-  frustum.Observe({1.0, 1.0});
-  frustum.Observe({1.0, -1.0});
-  return frustum;
-}
-
 // One wall in view, the left (y = 1), whose mapped far end is at x = `mapped_end` and is seen
 // now at x = `seen_end`; its near edge is where the view cuts it.
 struct OneWallEnd {
   OneWallEnd(double seen_end, double mapped_end)
-      : seen(Seen(-M_PI / 2, 1.0, 0.5, seen_end, 4000, 0.005)),
-        mapped(Seen(-M_PI / 2, 1.0, 0.5, mapped_end, 4000, 0.005)) {
+      : seen(WallOnLine(-M_PI / 2, 1.0, 0.5, seen_end, 4000, 0.005)),
+        mapped(WallOnLine(-M_PI / 2, 1.0, 0.5, mapped_end, 4000, 0.005)) {
     seen.iteration = mapped.iteration = 1;
     seen.cut[0] = true;
     planes.emplace_back(0, mapped, 0.05, 100);
@@ -395,8 +348,8 @@ TEST(Localisation, WithTheMotionKnownAnEndIsWeighedAgainstThePredictionByTheirNo
 // pose. The end is mapped at x = `mapped_end_x` and seen at `seen_end_x`.
 struct HallwayEnd {
   HallwayEnd(double mapped_end_x, double seen_end_x)
-      : left(Seen(-M_PI / 2, 1.0, 0.5, seen_end_x, 4000, 0.005)),
-        right(Seen(M_PI / 2, 1.0, -0.5, -3.0, 4000, 0.005)) {
+      : left(WallOnLine(-M_PI / 2, 1.0, 0.5, seen_end_x, 4000, 0.005)),
+        right(WallOnLine(M_PI / 2, 1.0, -0.5, -3.0, 4000, 0.005)) {
     left.iteration = right.iteration = 1;
     left.cut[0] = true;
     right.cut[0] = right.cut[1] = true;
@@ -467,7 +420,7 @@ TEST(Localisation, WithTheMotionKnownAStaticEndFarFromThePredictionIsNotTheWalls
 // the left (y = 1), known by its line only, its far end seen from poses the walls fixed at x =
 // `end_x` and seen now 8 cm nearer, as if the sensor had moved 8 cm forwards.
 PoseEstimate FromAnEndSeenBefore(const LearnedFrustum& frustum, double end_x) {
-  Observation seen = Seen(-M_PI / 2, 1.0, 0.5, end_x - 0.08, 4000, 0.005);
+  Observation seen = WallOnLine(-M_PI / 2, 1.0, 0.5, end_x - 0.08, 4000, 0.005);
   seen.iteration = 1;
   seen.cut[0] = true;
   const int far = seen.edge[1].x() > seen.edge[0].x() ? 1 : 0;

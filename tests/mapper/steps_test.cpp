@@ -10,8 +10,10 @@
 #include "ideal_segmenter.hpp"
 #include "localisation/pose_solver.hpp"
 #include "plane_store/registration.hpp"
+#include "plane_store/sensing.hpp"
 #include "plane_store/view_cuts.hpp"
 #include "relplane/mapper/mapper.hpp"
+#include "sampled_walls.hpp"
 #include "state_parts.hpp"
 
 namespace relplane::mapper {
@@ -533,8 +535,8 @@ TEST(MarkViewCuts, SightingsKeptByGroupsAreCutWithTheirObservations) {
   }
   ASSERT_TRUE(std::isinf(unlearnt.RangeLimit()));
   ASSERT_NEAR(learnt.RangeLimit(), 6.0, 0.1);
-  EXPECT_EQ(MarkViewCuts(unlearnt, state.store, state.grouping), 0);
-  EXPECT_EQ(MarkViewCuts(learnt, state.store, state.grouping), 2);
+  EXPECT_EQ(MarkViewCuts(unlearnt, ComparisonOptions{}.static_std, state.store, state.grouping), 0);
+  EXPECT_EQ(MarkViewCuts(learnt, ComparisonOptions{}.static_std, state.store, state.grouping), 2);
   for (const Observation& obs : state.store.planes.at(0).Observations()) {
     EXPECT_TRUE(obs.cut[far]);
     EXPECT_FALSE(obs.cut[1 - far]);
@@ -545,6 +547,38 @@ TEST(MarkViewCuts, SightingsKeptByGroupsAreCutWithTheirObservations) {
   EXPECT_FALSE(g.seen_fixed.at(0).cut[1 - far]);
   EXPECT_TRUE(g.shows_end.empty());
   EXPECT_TRUE(g.dirty);
+}
+
+// Edges stored before the sensor's angular step was learnt are judged coarse once it is
+// (Observe): the first sightings of a run, a side wall's far end metres ahead among them, would
+// otherwise be the only uncut sightings of that end and place it where the sensor first saw it.
+TEST(MarkViewCuts, EdgesStoredBeforeTheStepWasLearntAreJudgedCoarseOnceItIs) {
+  MapperState state;
+  // A wall 0.75 m to the side from 1 m to 4 m ahead, seen twice from a still sensor.
+  See(&state, 0, 1, {1.0, 0.75}, {4.0, 0.75});
+  See(&state, 0, 2, {1.0, 0.75}, {4.0, 0.75});
+  state.trajectory.poses[1] = state.trajectory.poses[2] = {0.0, 0.0, 0.0};
+  RltPlane& plane = state.store.planes.at(0);
+  plane.first_seen = SeenFrom(plane.Observations().front(), state.trajectory.poses[1]);
+  const int far = plane.Latest().edge[1].x() > plane.Latest().edge[0].x() ? 1 : 0;
+  const double static_std = ComparisonOptions{}.static_std;
+  // The field of view (45 degrees either side) learnt, the step not yet.
+  LearnedFrustum view_only;
+  view_only.Observe({1.0, 1.0});
+  view_only.Observe({1.0, -1.0});
+  ASSERT_EQ(view_only.AngularStep(), 0.0);
+  EXPECT_EQ(MarkViewCuts(view_only, static_std, state.store, state.grouping), 0);
+  const LearnedFrustum learnt = testing::SampledFrustum();  // the same view, 6 mrad between rays
+  ASSERT_GT(learnt.EdgeSpacing(plane.Latest().edge[far], plane.Latest().d),
+            MaxEndSpacing(static_std));  // 13 cm at the far end, 1.3 cm at the near one
+  EXPECT_EQ(MarkViewCuts(learnt, static_std, state.store, state.grouping), 2);
+  for (const Observation& obs : plane.Observations()) {
+    EXPECT_TRUE(obs.cut[far] && obs.coarse[far]);
+    EXPECT_FALSE(obs.ViewCut(far)) << "the comparisons still judge it (§II.C)";
+    EXPECT_FALSE(obs.cut[1 - far]);
+  }
+  EXPECT_TRUE(plane.first_seen.cut[far]);
+  EXPECT_EQ(MarkViewCuts(learnt, static_std, state.store, state.grouping), 0);
 }
 
 TEST(Mapper, RepeatedOrOldIterationsAreIgnored) {

@@ -35,6 +35,8 @@ struct Mapper::Steps {
   int64_t last_iteration = -1;
   // The frustum's range limit the stored edges were last judged against (MarkViewCuts).
   double judged_range_limit = std::numeric_limits<double>::infinity();
+  // The angular step the stored edges were last judged coarse against (MarkViewCuts).
+  double judged_step = 0.0;
 };
 
 Mapper::Mapper(MapperOptions options)
@@ -69,10 +71,11 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
 
   // §II.A the planes as wall observations, their edges cut by the view as it is learnt.
   std::vector<Observation> observations =
-      Observe(iteration, planes, options_.registration, &s.frustum);
-  if (s.frustum.RangeLimit() < s.judged_range_limit) {
+      Observe(iteration, planes, options_.registration, options_.comparison.static_std, &s.frustum);
+  if (s.frustum.RangeLimit() < s.judged_range_limit || s.frustum.AngularStep() != s.judged_step) {
     s.judged_range_limit = s.frustum.RangeLimit();
-    MarkViewCuts(s.frustum, state.store, state.grouping);
+    s.judged_step = s.frustum.AngularStep();
+    MarkViewCuts(s.frustum, options_.comparison.static_std, state.store, state.grouping);
   }
 
   const RegistrationFrame frame{iteration, previous, s.pose, motion, s.localiser.Held()};

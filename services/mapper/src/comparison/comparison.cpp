@@ -60,7 +60,7 @@ void AddSample(const Observation& oa, const ObservationTerms& ta, const Observat
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) {
       // An edge cut by the view now is no wall end now: the pairing skips this sample.
-      if (oa.cut[i] || ob.cut[j]) continue;
+      if (oa.ViewCut(i) || ob.ViewCut(j)) continue;
       const Vector2d ab = rat * (ob.edge[j] - oa.edge[i]);  // B's edge j from A's edge i
       const Vector2d ba = rbt * (oa.edge[i] - ob.edge[j]);  // A's edge i from B's edge j
       s->npair[i][j] += 1.0;
@@ -80,7 +80,8 @@ void AddSample(const Observation& oa, const ObservationTerms& ta, const Observat
     const double cb = na_in_b.dot(rbt * (oa.edge[0] - ob.edge[i]));
     s->line[1][i][0] += cb, s->line[1][i][1] += cb * cb;
   }
-  s->cut[0] += oa.cut[0], s->cut[1] += oa.cut[1], s->cut[2] += ob.cut[0], s->cut[3] += ob.cut[1];
+  s->cut[0] += oa.ViewCut(0), s->cut[1] += oa.ViewCut(1);
+  s->cut[2] += ob.ViewCut(0), s->cut[3] += ob.ViewCut(1);
   const Vector2d pts[4] = {oa.edge[0], oa.edge[1], ob.edge[0], ob.edge[1]};
   for (int k = 0; k < 4; ++k) {
     double* e = s->edges[k];
@@ -95,7 +96,8 @@ int CutKey(const std::deque<Observation>& obs, size_t k, size_t size) {
   int key = 0;
   for (int e = 0; e < 2; ++e) {
     int votes = 0, total = 0;
-    for (size_t q = k > 0 ? k - 1 : 0; q <= k + 1 && q < size; ++q) votes += obs[q].cut[e], ++total;
+    for (size_t q = k > 0 ? k - 1 : 0; q <= k + 1 && q < size; ++q)
+      votes += obs[q].ViewCut(e), ++total;
     if (2 * votes > total) key |= 1 << e;
   }
   return key;

@@ -243,6 +243,19 @@ const SeenWall& FinestEndSighting(const GlobalMapInputs& in, const GlobalMapOpti
   return fine.seen;
 }
 
+// The plane's latest sighting from a known pose whose end `ref` the view did not cut
+// (Observation::ViewCut: one too coarsely sampled to place by itself still counts); invalid when
+// there is none.
+SeenWall LatestUncutSighting(const GlobalMapInputs& in, const RltPlane& plane, int ref) {
+  const auto& all = plane.Observations();
+  for (size_t i = all.size(); i > 0; --i) {
+    const Observation& obs = all[i - 1];
+    const auto pose = in.trajectory.poses.find(obs.iteration);
+    if (!obs.ViewCut(ref) && pose != in.trajectory.poses.end()) return SeenFrom(obs, pose->second);
+  }
+  return {};
+}
+
 // Prior for `group`: a member's reference end as seen around when the group was made, put
 // back through its place in the relative map. First choice: the latest sighting of each such end
 // before the group was made, from a pose the walls fixed, or where the fixed poses have seen that
@@ -382,6 +395,15 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, const std::map<int64_t, Placemen
     const double yaw = geometry::WrapAngle(placed->second.alpha - basis_rel.alpha);
     const Vector2d t = placed->second.point - Eigen::Rotation2Dd(yaw) * basis_rel.point;
     return {t.x(), t.y(), yaw};
+  }
+  // Nor a last build that placed it: the latest sighting the view did not cut there, from
+  // whatever pose it was made (one the motion model or odometry carried, §II.E), its end within
+  // a sample's spacing. A cut edge lies anywhere short of the end: a side wall first seen where
+  // the range cut it, 5 m short of its corner, put the first group, and the poses after it, 5 m
+  // back along the hallway once the corner was judged static from sightings too coarse to place.
+  if (basis_seen.cut[basis_rel.ref]) {
+    const SeenWall latest_end = LatestUncutSighting(in, *in.store.Plane(basis), basis_rel.ref);
+    if (latest_end.valid) return PlacementFromSighting(latest_end, basis_rel);
   }
   return prior;
 }

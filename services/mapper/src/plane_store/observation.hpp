@@ -37,6 +37,11 @@ struct Observation {
   // The edge is where the view cuts the wall (field of view, range, or a nearer plane in
   // front), not a wall end: it cannot be a static edge (§II.C).
   bool cut[2] = {false, false};
+  // Cut only because the sensor's samples lie too far apart along the wall at the edge to place
+  // it by one sighting (Observe): the comparisons, which pool many sightings, still judge it.
+  bool coarse[2] = {false, false};
+  // Cut by the view, a nearer plane, the range or a jump: the comparisons' cut (§II.C).
+  bool ViewCut(int e) const { return cut[e] && !coarse[e]; }
 
   Eigen::Vector2d Direction() const { return {-normal.y(), normal.x()}; }
   double Alpha() const { return std::atan2(normal.x(), -normal.y()); }

@@ -267,15 +267,15 @@ void MarkJumpedEnds(const std::vector<int64_t>& match, const PlaneStore& store,
     const auto& all = it->second.Observations();
     const Eigen::Vector2d t = pose.Rotation() * obs.Direction();
     for (int e = 0; e < 2; ++e) {
-      if (obs.cut[e]) continue;
+      if (obs.ViewCut(e)) continue;
       // The latest uncut sighting of this end with a known pose.
       for (size_t i = all.size(); i > 0; --i) {
         const Observation& then = all[i - 1];
         if (then.iteration < obs.iteration - options.end_memory) break;
         const auto seen_from = trajectory.poses.find(then.iteration);
-        if (then.cut[e] || seen_from == trajectory.poses.end()) continue;
+        if (then.ViewCut(e) || seen_from == trajectory.poses.end()) continue;
         const Eigen::Vector2d jump = seen_from->second * then.edge[e] - pose * obs.edge[e];
-        obs.cut[e] = std::abs(t.dot(jump)) > options.end_jump;
+        if (std::abs(t.dot(jump)) > options.end_jump) obs.cut[e] = true, obs.coarse[e] = false;
         break;
       }
     }

@@ -47,7 +47,16 @@ class RltPlane {
   const Observation* At(int64_t iteration) const;
   // Marks edge `e` of the stored observation at `index` as cut by the view: the view is learnt
   // as it is used, and an edge judged before the range limit was known is judged again.
-  void MarkCut(size_t index, int e) { observations_.at(index).cut[e] = true; }
+  void MarkCut(size_t index, int e) {
+    observations_.at(index).cut[e] = true;
+    observations_.at(index).coarse[e] = false;
+  }
+  // Marks edge `e` of the stored observation at `index` as one the sensor's samples do not
+  // resolve (Observation::coarse), judged again once the sensor's angular step is learnt.
+  void MarkCoarse(size_t index, int e) {
+    observations_.at(index).cut[e] = true;
+    observations_.at(index).coarse[e] = true;
+  }
 
   // §II.C: "the interval must be split up if a plane changes state from growing to shrinking".
   // The phase of an iteration: phases change where the visible length turns from growing to

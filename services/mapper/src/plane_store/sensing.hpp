@@ -13,7 +13,13 @@
 
 namespace relplane::mapper {
 
+// The widest spacing of the sensor's samples along a wall at an edge that still places the wall's
+// end by one sighting: √12 static_std, the width of a uniform error with the standard deviation
+// the comparisons tell a static end by (§II.C).
+double MaxEndSpacing(double static_std);
+
 std::vector<Observation> Observe(int64_t iteration, const std::vector<PlaneInput>& planes,
-                                 const RegistrationOptions& options, LearnedFrustum* frustum);
+                                 const RegistrationOptions& options, double static_std,
+                                 LearnedFrustum* frustum);
 
 }  // namespace relplane::mapper

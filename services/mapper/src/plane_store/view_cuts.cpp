@@ -6,7 +6,9 @@
 
 namespace relplane::mapper {
 
-int MarkViewCuts(const LearnedFrustum& frustum, PlaneStore& store, Grouping& grouping) {
+int MarkViewCuts(const LearnedFrustum& frustum, double static_std, PlaneStore& store,
+                 Grouping& grouping) {
+  const double max_spacing = MaxEndSpacing(static_std);
   int marked = 0;
   for (auto& entry : store.planes) {
     const int64_t id = entry.first;
@@ -15,8 +17,15 @@ int MarkViewCuts(const LearnedFrustum& frustum, PlaneStore& store, Grouping& gro
     std::set<int64_t> changed;  // iterations with a newly cut edge
     for (size_t i = 0; i < all.size(); ++i) {
       for (int e = 0; e < 2; ++e) {
-        if (all[i].cut[e] || !frustum.Clipped(all[i].edge[e], all[i].edge[1 - e])) continue;
-        plane.MarkCut(i, e);
+        const Observation& obs = all[i];
+        if (obs.ViewCut(e)) continue;
+        if (frustum.Clipped(obs.edge[e], obs.edge[1 - e])) {
+          plane.MarkCut(i, e);
+        } else if (!obs.cut[e] && frustum.EdgeSpacing(obs.edge[e], obs.d) > max_spacing) {
+          plane.MarkCoarse(i, e);
+        } else {
+          continue;
+        }
         changed.insert(all[i].iteration);
         ++marked;
       }
