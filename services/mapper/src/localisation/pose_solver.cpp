@@ -168,7 +168,6 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
   bool finest = false;
   Vector2d finest_dir = Vector2d::Zero();
   double finest_along = 0.0, finest_spacing = std::numeric_limits<double>::infinity();
-  int placed_ends = 0;
   for (size_t k = 0; k < sightings.size(); ++k) {
     const Sighting& x = sightings[k];
     if (!use[k] || !Placed(x)) continue;
@@ -194,7 +193,6 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
         const double spacing = m.frustum.EdgeSpacing(x.obs->edge[e], x.obs->d);
         if (motion_known && spacing > 2.0 * m.options.edge_noise) continue;
         sys->Add(t, along, motion_known ? EndWeight(m.frustum, *x.obs, e) : 1.0);
-        placed_ends += motion_known ? 1 : 0;
         continue;
       }
       // Such an end is looked up only where no motion is known, so `previous` is the pose held
@@ -218,10 +216,13 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
       }
     }
   }
-  // With the motion known, the ends weighed against the learnt velocity's prediction by their
-  // noise: the prediction drifts by up to drift_rate an iteration since the walls last fixed
-  // the position, a mapped end is good to `edge_noise` (the lines' unit weight stands for that).
-  if (placed_ends > 0) {
+  // With the motion known, the ends and the walls' lines weighed against the learnt velocity's
+  // prediction by their noise: the prediction drifts by up to drift_rate an iteration since the
+  // walls last fixed the position, a mapped end is good to `edge_noise` (the lines' unit weight
+  // stands for that). Also with no end: walls that fix the open direction only weakly (a line
+  // 15 degrees off the corridor, its offset error times 1/sin 15 along it) move the position
+  // there by their information against the prediction's, not outright.
+  if (motion_known) {
     const double sigma = std::max(m.prediction.sigma, options.drift_rate);
     const double w = std::pow(m.options.edge_noise / sigma, 2);
     sys->AddPrior(open, open.dot(m.previous.Translation()), w);
