@@ -184,8 +184,10 @@ MapperOptions ReadMapperOptions(Reader& r) {
   mo.Read("max_coast", &o.motion.max_coast);
   mo.Read("pose_history", &o.motion.pose_history);
   mo.Read("odometry_drift", &o.motion.odometry_drift);
+  mo.Read("odometry_scale_span", &o.motion.odometry_scale_span);
   Positive(mo, "turn_rate", o.motion.turn_rate);
   if (!(o.motion.odometry_drift >= 0.0)) mo.Fail("odometry_drift", "must be 0 or more");
+  if (!(o.motion.odometry_scale_span > 0.0)) mo.Fail("odometry_scale_span", "must be over 0");
   if (o.motion.min_span < 1) mo.Fail("min_span", "must be at least 1");
   if (o.motion.max_stretches < 1) mo.Fail("max_stretches", "must be at least 1");
   if (o.motion.pose_history < o.motion.max_gap + o.motion.window) {

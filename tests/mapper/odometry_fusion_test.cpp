@@ -43,6 +43,27 @@ TEST(OdometryMotion, ItsErrorGrowsUntilTheWallsFixThePosition) {
   EXPECT_NEAR(model.Odometry({}, Increment({0.05, 0.0, 0.0}, 0.0)).sigma, 0.02 * 0.05, 1e-12);
 }
 
+// Odometry's distance scale is learnt from the spans between poses the walls fixed: wheels that
+// read 1 % too far carry the position 1 cm a metre along every stretch the walls leave open, where
+// the learnt velocity is nearly exact (on generated worlds with the simulator's default odometry,
+// fused runs came out worse than without odometry by 1-4 cm on 38 of 200).
+TEST(OdometryMotion, ItsScaleIsLearntFromTheSpansTheWallsFixed) {
+  MotionModel model(MotionOptions{}, LocalisationOptions{}.max_step);
+  const geometry::Pose2 read{1.01, 0.0, 0.0};  // a metre driven, 1.01 m read
+  // A span shorter than motion.odometry_scale_span goes on to the next fixed pose.
+  EXPECT_FALSE(model.CalibrateOdometry({}, {0.2, 0.0, 0.0}, {0.202, 0.0, 0.0}));
+  for (int k = 0; k < 4; ++k) EXPECT_TRUE(model.CalibrateOdometry({}, {1.0, 0.0, 0.0}, read));
+  EXPECT_EQ(model.OdometryScale(), 1.0) << "learnt from 5 spans on";
+  // One span across a pose the walls fixed 0.4 m off does not move the median.
+  EXPECT_TRUE(model.CalibrateOdometry({}, {1.4, 0.0, 0.0}, read));
+  EXPECT_TRUE(model.CalibrateOdometry({}, {1.0, 0.0, 0.0}, read));
+  EXPECT_NEAR(model.OdometryScale(), 1.0 / 1.01, 1e-12);
+  // The prediction moves on by the scaled reading.
+  const Motion m = model.Odometry({2.0, 0.0, M_PI / 2}, Increment({0.0505, 0.0, 0.0}, 0.0));
+  EXPECT_NEAR(m.predicted.y, 0.05, 1e-12);
+  EXPECT_NEAR(m.predicted.x, 2.0, 1e-12);
+}
+
 // The paper's Fig. 5 loop without door recesses: for the first ~7 m of each leg only the two
 // side walls are in view, and nothing the planes show fixes the position along the hallway
 // (the `hallway_loop` scenario; 6.9 m ATE there). Odometry off by 1 % in distance and turn and

@@ -37,6 +37,11 @@ struct Mapper::Steps {
   double judged_range_limit = std::numeric_limits<double>::infinity();
   // The angular step the stored edges were last judged coarse against (MarkViewCuts).
   double judged_step = 0.0;
+  // Odometry read since the last pose the walls fixed (`anchor`, when `anchored`), in that
+  // pose's frame: the span MotionModel::CalibrateOdometry learns odometry's scale from.
+  bool anchored = false;
+  geometry::Pose2 anchor;
+  geometry::Pose2 driven;
 };
 
 Mapper::Mapper(MapperOptions options)
@@ -105,6 +110,13 @@ PoseEstimate Mapper::Process(int64_t iteration, const std::vector<PlaneInput>& p
   const bool fixed = estimate.status == PoseStatus::kTracking;
   state.trajectory.Record(iteration, estimate.pose, fixed);  // §II.E
   if (fixed) s.motion.Fixed();
+  // Odometry's scale from the spans between fixed poses it read without a break.
+  const bool read = odometry && !odometry_refused && previous >= 0;
+  if (read && s.anchored) s.driven = s.driven * odometry->motion;
+  if (!read) s.anchored = false;
+  if (fixed && (!s.anchored || s.motion.CalibrateOdometry(s.anchor, estimate.pose, s.driven))) {
+    s.anchored = true, s.anchor = estimate.pose, s.driven = geometry::Pose2{};
+  }
   s.pose = estimate.pose;
   NoteSightingPose(visible, s.pose, state.store);
   DropOldObservations(visible, iteration, options_, state.store);  // bounded memory (§II.F)

@@ -138,7 +138,10 @@ Motion MotionModel::Odometry(const geometry::Pose2& last, const OdometryIncremen
   odometry_distance_ += increment.motion.Translation().norm();
   const double systematic = options_.odometry_drift * odometry_distance_;
   Motion out;
-  out.predicted = last * increment.motion;
+  geometry::Pose2 motion = increment.motion;
+  motion.x *= odometry_scale_;
+  motion.y *= odometry_scale_;
+  out.predicted = last * motion;
   out.known = true;
   out.odometry = true;
   out.sigma = std::sqrt(odometry_variance_ + systematic * systematic);
@@ -148,5 +151,21 @@ Motion MotionModel::Odometry(const geometry::Pose2& last, const OdometryIncremen
 void MotionModel::Fixed() {
   odometry_variance_ = 0.0;
   odometry_distance_ = 0.0;
+}
+
+bool MotionModel::CalibrateOdometry(const geometry::Pose2& from, const geometry::Pose2& pose,
+                                    const geometry::Pose2& driven) {
+  const Eigen::Vector2d read = driven.Translation();
+  const double length = read.norm();
+  if (!(length >= options_.odometry_scale_span)) return false;
+  // Along odometry's own direction: the walls' poses across it are their noise.
+  const Eigen::Vector2d walls = (from.Inverse() * pose).Translation();
+  scale_ratios_.push_back(walls.dot(read) / (length * length));
+  if (scale_ratios_.size() > kSpans) scale_ratios_.pop_front();
+  if (scale_ratios_.size() < kMinSpans) return true;
+  std::vector<double> sorted(scale_ratios_.begin(), scale_ratios_.end());
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  odometry_scale_ = sorted[sorted.size() / 2];
+  return true;
 }
 }  // namespace relplane::mapper

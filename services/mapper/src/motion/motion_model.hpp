@@ -4,6 +4,7 @@
 // turns on the spot.
 
 #include <cstdint>
+#include <deque>
 
 #include "motion/trajectory.hpp"
 #include "relplane/common/geometry.hpp"
@@ -54,6 +55,17 @@ class MotionModel {
   Motion Odometry(const geometry::Pose2& last, const OdometryIncrement& increment);
   // The walls fixed the position in every direction (§II.D): odometry's error starts again.
   void Fixed();
+  // Odometry's distance scale from the poses the walls fixed (§II.E: the motion model's
+  // constant is estimated from the constrained frames): `pose`, fixed, ends a span since the
+  // last such pose over which `driven` is odometry's motion read (in that pose's frame). A wheel
+  // radius 1 % off is 1 cm a metre along every stretch the walls leave open, where the learnt
+  // velocity alone is nearly exact. Returns whether the span was long enough to count (a
+  // shorter one goes on to the next fixed pose).
+  bool CalibrateOdometry(const geometry::Pose2& from, const geometry::Pose2& pose,
+                         const geometry::Pose2& driven);
+  // The median ratio of the walls' distance to odometry's over the last spans, 1 until there
+  // are kMinSpans.
+  double OdometryScale() const { return odometry_scale_; }
 
  private:
   // The latest stretch of fixed poses long enough to learn a velocity from: [*i0, *i1].
@@ -72,6 +84,10 @@ class MotionModel {
   // (m^2, the covariances' traces) and the distance they drove (m).
   double odometry_variance_ = 0.0;
   double odometry_distance_ = 0.0;
+  // Odometry's scale: the ratios of the last spans (at most kSpans) and their median.
+  static constexpr size_t kSpans = 31, kMinSpans = 5;
+  std::deque<double> scale_ratios_;
+  double odometry_scale_ = 1.0;
 };
 
 }  // namespace relplane::mapper

@@ -201,6 +201,9 @@ struct MotionOptions {
   // a calibrated robot's are about 1 %). How far an odometry prediction may be off grows with
   // both since the walls last fixed the position.
   double odometry_drift = 0.02;
+  // m: odometry's distance scale is learnt from spans at least this long between poses the walls
+  // fixed (the walls' distance over odometry's), as the median of the last spans' ratios.
+  double odometry_scale_span = 0.5;
 };
 
 // Soft-linked groups (§V future work): least squares over the group placements at loop closure.
