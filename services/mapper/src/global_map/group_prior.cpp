@@ -398,9 +398,8 @@ Pose2 PriorPlacement(const GlobalMapInputs& in, const std::map<int64_t, Placemen
   }
   // Nor a last build that placed it: the latest sighting the view did not cut there, from
   // whatever pose it was made (one the motion model or odometry carried, §II.E), its end within
-  // a sample's spacing. A cut edge lies anywhere short of the end: a side wall first seen where
-  // the range cut it, 5 m short of its corner, put the first group, and the poses after it, 5 m
-  // back along the hallway once the corner was judged static from sightings too coarse to place.
+  // a sample's spacing. A cut edge lies anywhere short of the end, so it never places the group
+  // along its wall (§II.C: a cut edge is no static edge).
   if (basis_seen.cut[basis_rel.ref]) {
     const SeenWall latest_end = LatestUncutSighting(in, *in.store.Plane(basis), basis_rel.ref);
     if (latest_end.valid) return PlacementFromSighting(latest_end, basis_rel);

@@ -220,8 +220,8 @@ bool AddMotionModelEnds(const std::vector<Sighting>& sightings, const std::vecto
   // prediction by their noise: the prediction drifts by up to drift_rate an iteration since the
   // walls last fixed the position, a mapped end is good to `edge_noise` (the lines' unit weight
   // stands for that). Also with no end: walls that fix the open direction only weakly (a line
-  // 15 degrees off the corridor, its offset error times 1/sin 15 along it) move the position
-  // there by their information against the prediction's, not outright.
+  // at angle θ to it turns its offset error into an error 1/sin θ times as large there) move the
+  // position by their information against the prediction's, not outright.
   if (motion_known) {
     const double sigma = std::max(m.prediction.sigma, options.drift_rate);
     const double w = std::pow(m.options.edge_noise / sigma, 2);

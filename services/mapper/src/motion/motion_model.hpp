@@ -57,10 +57,9 @@ class MotionModel {
   void Fixed();
   // Odometry's distance scale from the poses the walls fixed (§II.E: the motion model's
   // constant is estimated from the constrained frames): `pose`, fixed, ends a span since the
-  // last such pose over which `driven` is odometry's motion read (in that pose's frame). A wheel
-  // radius 1 % off is 1 cm a metre along every stretch the walls leave open, where the learnt
-  // velocity alone is nearly exact. Returns whether the span was long enough to count (a
-  // shorter one goes on to the next fixed pose).
+  // last such pose over which `driven` is odometry's motion read (in that pose's frame): a
+  // scale error carries the position off along every stretch the walls leave open. Returns
+  // whether the span was long enough to count (a shorter one goes on to the next fixed pose).
   bool CalibrateOdometry(const geometry::Pose2& from, const geometry::Pose2& pose,
                          const geometry::Pose2& driven);
   // The median ratio of the walls' distance to odometry's over the last spans, 1 until there
