@@ -168,6 +168,7 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   }
   ReadPositive(r, "layer_rms_share", &o.sensor.layer_rms_share);
   ReadPositive(r, "surface_sigma_max", &o.sensor.surface_sigma_max);
+  ReadPositive(r, "grazing_margin_deg", &o.sensor.grazing_margin_deg);
   long max_points = static_cast<long>(s.max_points);
   ReadPositive(r, "max_points", &max_points);
   s.max_points = max_points;

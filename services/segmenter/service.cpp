@@ -53,8 +53,13 @@ void SegmenterService::OnCloud(point_cloud_t& msg) {
   ToPlaneSet(result, msg.utime, msg.seq, &planes_msg_);
   bus::Publish(out_, "PLANES", planes_msg_);
   nonfinite_total_ += result.dropped_nonfinite;
-  stats_.SetDetail(fmt::format("planes {}, non-finite points dropped {} (total {})",
-                               result.planes.size(), result.dropped_nonfinite, nonfinite_total_));
+  layers_total_ += result.layer_planes;
+  grazing_total_ += result.grazing_planes;
+  stats_.SetDetail(fmt::format(
+      "planes {}, non-finite points dropped {} (total {}), planes the camera cannot see dropped: "
+      "depth layers {} (total {}), beyond its incidence {} (total {})",
+      result.planes.size(), result.dropped_nonfinite, nonfinite_total_, result.layer_planes,
+      layers_total_, result.grazing_planes, grazing_total_));
 }
 
 }  // namespace relplane::segmenter

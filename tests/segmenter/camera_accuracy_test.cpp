@@ -17,16 +17,19 @@ std::string Scenario(const char* name) {
 }
 
 void Print(const char* what, const ScenarioAccuracy& a) {
-  std::printf("| %s | %d | %d | %.3f | %.3f | %.3f | %.2f | %.2f |\n", what, a.frames,
+  std::printf("| %s | %d | %d | %.3f | %.3f | %.3f | %.2f | %.2f | %.1f |\n", what, a.frames,
               a.true_planes, a.Precision(), a.Recall(), a.median_angle_deg,
-              a.median_offset_m * 1000, a.min_rms_to_camera);
+              a.median_offset_m * 1000, a.min_rms_to_camera, a.max_incidence_deg);
 }
 
 // Without a sensor model each plane learns its own noise: the points of one quantized depth
 // value (a layer of a tilted wall's staircase, or the last value before the range cut) fit a
 // plane with an RMS of zero and are reported as planes. Told its camera (`sensor: kinect_v1`),
 // the segmenter never reports a plane flatter than half what the camera resolves along its
-// normal at its range, and finds more of the true planes.
+// normal at its range, nor one its rays meet beyond the incidence it returns depth from (a
+// narrow strip of a wall 4.5 m away, spread along its rays by 3 cm of depth noise, fitted as a
+// "wall" containing those rays: on office_kinect_v1 such strips pulled the mapper's pose 0.9 m
+// sideways), and finds more of the true planes.
 TEST(CameraAccuracy, KinectV1OfficeWithItsSensorModel) {
   const std::string file = Scenario("office_kinect_v1");
   const ScenarioAccuracy blind = MeasureCameraScenario(file, Options{}, 10);
@@ -38,6 +41,9 @@ TEST(CameraAccuracy, KinectV1OfficeWithItsSensorModel) {
   ASSERT_GT(a.true_planes, 400);
   EXPECT_LT(blind.min_rms_to_camera, 0.1) << "the layers no longer show without the model";
   EXPECT_GE(a.min_rms_to_camera, told.sensor.layer_rms_share);
+  EXPECT_GT(blind.max_incidence_deg, 85.0) << "no strip along the rays without the model";
+  EXPECT_LE(a.max_incidence_deg,
+            told.sensor.model.max_incidence_deg + told.sensor.grazing_margin_deg);
   EXPECT_GT(a.Precision(), blind.Precision() + 0.05);
   EXPECT_GT(a.Recall(), blind.Recall() + 0.03);
   // The target is 0.95 for both; today's level (docs/results/cameras.md), as a guard.

@@ -109,14 +109,35 @@ bool MergeAndPrune(const Options& options, float min_support, std::vector<EmPlan
   return changed;
 }
 
-// Removes from `mixture` the planes of the detections flatter than the camera resolves along
-// their normals at their centroids (SensorOptions::layer_rms_share); returns how many.
-int DropLayers(const SensorOptions& sensor, const std::vector<DetectedPlane>& detected,
-               std::vector<EmPlane>* mixture) {
+// What a detection is when the camera could not have returned it as a surface.
+enum class NoSurface { kSurface, kLayer, kGrazing };
+
+// Flatter than the camera resolves along its normal at its centroid (the points of one quantized
+// depth, SensorOptions::layer_rms_share), or facing its rays beyond the camera's incidence
+// limit (samples of another surface spread along their rays, SensorOptions::BeyondIncidence).
+NoSurface Classify(const SensorOptions& sensor, const DetectedPlane& p) {
+  if (p.rms < sensor.layer_rms_share * sensor.SigmaAlongNormal(p.normal, p.centroid)) {
+    return NoSurface::kLayer;
+  }
+  if (sensor.BeyondIncidence(p.normal, p.centroid)) return NoSurface::kGrazing;
+  return NoSurface::kSurface;
+}
+
+struct Dropped {
+  int layers = 0;
+  int grazing = 0;
+  int Total() const { return layers + grazing; }
+};
+
+// Removes from `mixture` the planes of the detections that are no surface (Classify); returns
+// how many of each kind.
+Dropped DropNoSurfaces(const SensorOptions& sensor, const std::vector<DetectedPlane>& detected,
+                       std::vector<EmPlane>* mixture) {
   const float cos_same = std::cos(2.0f * static_cast<float>(M_PI) / 180.0f);
-  std::vector<uint8_t> layer(mixture->size(), 0);
+  std::vector<NoSurface> kind(mixture->size(), NoSurface::kSurface);
   for (const DetectedPlane& p : detected) {
-    if (p.rms >= sensor.layer_rms_share * sensor.SigmaAlongNormal(p.normal, p.centroid)) continue;
+    const NoSurface k = Classify(sensor, p);
+    if (k == NoSurface::kSurface) continue;
     // Its mixture plane: the one through its centroid, facing the same way.
     int best = -1;
     float best_offset = std::numeric_limits<float>::infinity();
@@ -128,13 +149,15 @@ int DropLayers(const SensorOptions& sensor, const std::vector<DetectedPlane>& de
         best_offset = offset;
       }
     }
-    if (best >= 0) layer[static_cast<size_t>(best)] = 1;
+    if (best >= 0) kind[static_cast<size_t>(best)] = k;
   }
+  Dropped dropped;
   std::vector<EmPlane> kept;
   for (size_t j = 0; j < mixture->size(); ++j) {
-    if (!layer[j]) kept.push_back((*mixture)[j]);
+    if (kind[j] == NoSurface::kSurface) kept.push_back((*mixture)[j]);
+    dropped.layers += kind[j] == NoSurface::kLayer;
+    dropped.grazing += kind[j] == NoSurface::kGrazing;
   }
-  const int dropped = static_cast<int>(mixture->size() - kept.size());
   mixture->swap(kept);
   return dropped;
 }
@@ -269,13 +292,16 @@ Result Segmenter::Segment(const Cloud& input) {
   describe_formed();
   // A plane flatter than the camera resolves at its range is no surface but the points of one
   // quantized depth value: a tilted surface at range is a staircase of exactly flat layers, and
-  // each fits a plane with an RMS near zero. Its mixture plane goes and the frame is assigned
-  // and described again, so its points return to the surface they sample.
+  // each fits a plane with an RMS near zero. Nor is a plane the camera's rays graze beyond the
+  // incidence it returns depth from: a narrow strip of a far wall, spread along its rays by the
+  // depth noise, fits a plane that contains those rays. Its mixture plane goes and the frame is
+  // assigned and described again, so its points return to the surface they sample.
   if (options_.sensor.Known()) {
-    const int layers = DropLayers(options_.sensor, result.planes, &planes);
-    if (layers > 0) {
-      DropLayers(options_.sensor, result.planes, &previous_);
-      result.layer_planes = layers;
+    const Dropped dropped = DropNoSurfaces(options_.sensor, result.planes, &planes);
+    if (dropped.Total() > 0) {
+      DropNoSurfaces(options_.sensor, result.planes, &previous_);
+      result.layer_planes = dropped.layers;
+      result.grazing_planes = dropped.grazing;
       result.em_planes = static_cast<int>(planes.size());
       describe_all();
     }
@@ -299,28 +325,35 @@ Result Segmenter::Segment(const Cloud& input) {
     describe_all();
   }
   if (options_.sensor.Known()) {
-    // A layer may remain where its surface's own mixture plane holds nothing else (a wall just
+    // One may remain where its surface's own mixture plane holds nothing else (a wall just
     // beyond the camera's range, of which only its nearest depth value comes back): not
     // reported.
     const SensorOptions& sensor = options_.sensor;
-    const auto flat = [&sensor](const DetectedPlane& p) {
-      return p.rms < sensor.layer_rms_share * sensor.SigmaAlongNormal(p.normal, p.centroid);
+    const auto no_surface = [&sensor](const DetectedPlane& p) {
+      return Classify(sensor, p) != NoSurface::kSurface;
     };
-    const auto layers = std::count_if(result.planes.begin(), result.planes.end(), flat);
-    if (layers > 0 && options_.keep_labels) {
-      // Labels index the planes: the layers' points become unlabelled, the rest renumbered.
+    int layers = 0, grazing = 0;
+    for (const DetectedPlane& p : result.planes) {
+      const NoSurface k = Classify(sensor, p);
+      layers += k == NoSurface::kLayer;
+      grazing += k == NoSurface::kGrazing;
+    }
+    if (layers + grazing > 0 && options_.keep_labels) {
+      // Labels index the planes: the dropped planes' points become unlabelled, the rest
+      // renumbered.
       std::vector<int32_t> renumber(result.planes.size(), -1);
       int32_t next = 0;
       for (size_t j = 0; j < result.planes.size(); ++j) {
-        if (!flat(result.planes[j])) renumber[j] = next++;
+        if (!no_surface(result.planes[j])) renumber[j] = next++;
       }
       for (int32_t& l : description.piece_labels) {
         if (l >= 0) l = renumber[static_cast<size_t>(l)];
       }
     }
-    result.planes.erase(std::remove_if(result.planes.begin(), result.planes.end(), flat),
+    result.planes.erase(std::remove_if(result.planes.begin(), result.planes.end(), no_surface),
                         result.planes.end());
-    result.layer_planes += static_cast<int>(layers);
+    result.layer_planes += layers;
+    result.grazing_planes += grazing;
   }
   const auto assigned =
       std::count_if(labels_.begin(), labels_.end(), [](int32_t l) { return l >= 0; });

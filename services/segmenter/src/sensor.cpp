@@ -26,6 +26,16 @@ float SensorOptions::SigmaAlongNormal(const Eigen::Vector3f& normal,
   return std::sqrt(VarianceAt(point.x())) * std::fabs(normal.dot(point / point.x()));
 }
 
+bool SensorOptions::BeyondIncidence(const Eigen::Vector3f& normal,
+                                    const Eigen::Vector3f& centroid) const {
+  const double limit_deg = model.max_incidence_deg + grazing_margin_deg;
+  if (!Known() || limit_deg >= 90.0) return false;
+  const float range = centroid.norm();
+  if (!(range > 0.0f)) return false;
+  const double cos_limit = std::cos(limit_deg * M_PI / 180.0);
+  return std::fabs(normal.dot(centroid)) / range < cos_limit;
+}
+
 float SensorOptions::CoplanarDistance(float base, const Eigen::Vector3f& normal_a,
                                       const Eigen::Vector3f& centroid_a,
                                       const Eigen::Vector3f& normal_b,

@@ -95,6 +95,11 @@ void SimScorer::AddFrame(const sim::Scan& scan, const Eigen::Isometry3d& pose,
   for (const auto& p : planes) {
     const double floor = CameraNoiseAlongNormal(camera_, p);
     if (floor > 0.0) tally->AddRmsToCamera(p.rms / floor);
+    const Eigen::Vector3d normal = p.normal.cast<double>(), centroid = p.centroid.cast<double>();
+    if (centroid.norm() > 0.0) {
+      tally->AddIncidence(std::acos(std::min(1.0, std::fabs(normal.dot(centroid.normalized())))) *
+                          180.0 / M_PI);
+    }
     double a, o;
     for (const auto& t : truth_) {
       if (Match(p, t, pose, &a, &o)) {

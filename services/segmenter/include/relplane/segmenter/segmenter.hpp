@@ -20,6 +20,7 @@ struct Result {
   int em_planes = 0;              // mixture components after EM (and pieceless ones dropped)
   int pieceless_planes = 0;       // mixture components dropped for having no piece
   int layer_planes = 0;           // mixture components dropped as quantization layers
+  int grazing_planes = 0;         // mixture components dropped as beyond the camera's incidence
   int line_refits = 0;            // mixture planes set to their piece's line (DominantLineFit)
   int rounds = 0;                 // EM rounds run
   int reanchored = 0;             // seeds lost to the sensor's motion and kept, moved with it

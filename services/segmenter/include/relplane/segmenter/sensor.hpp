@@ -4,7 +4,8 @@
 // With it, no plane is fitted tighter than the camera resolves at its range, the band a point
 // supports a plane in grows with its depth (as CAPE and PEAC grow theirs), planes at range
 // merge within what the camera resolves there, and a plane flatter than the camera can measure
-// (the points of one quantized depth value) is no surface.
+// (the points of one quantized depth value) is no surface, nor is one the camera's rays meet
+// at an incidence it returns nothing from.
 
 #include <Eigen/Core>
 #include <string>
@@ -26,6 +27,11 @@ struct SensorOptions {
   // roughness: at most this (metres; caps Options::sigma_max). A wider band lets a large plane
   // take in the small faces beside it.
   float surface_sigma_max = 0.005f;
+  // degrees: a reported plane the rays meet more than the camera's max_incidence_deg plus this
+  // from its normal (at its centroid) is no surface the camera returns depth from, but samples
+  // of another surface spread along their rays by the depth noise: it is dropped and its points
+  // assigned again. The margin covers the fitted normal's own error.
+  float grazing_margin_deg = 2.0f;
 
   bool Known() const { return !preset.empty(); }
   // Sets preset and model; false for an unknown name (nothing changed).
@@ -35,6 +41,11 @@ struct SensorOptions {
   // What the camera resolves along a plane's normal for points near `point` (sensor frame):
   // the depth noise moves a point along its ray by the change in depth over the ray's depth.
   float SigmaAlongNormal(const Eigen::Vector3f& normal, const Eigen::Vector3f& point) const;
+  // Whether a plane through `centroid` (sensor frame) with `normal` faces the ray to its
+  // centroid beyond the camera's incidence limit and the margin. A real surface cannot: the
+  // centroid's distance is at most its farthest point's, so the cosine of its incidence,
+  // |normal . centroid| / |centroid|, is at least its least one among the points returned.
+  bool BeyondIncidence(const Eigen::Vector3f& normal, const Eigen::Vector3f& centroid) const;
   // How far apart two near-parallel planes (normals and centroids) may lie and be one surface:
   // `base`, or with a camera at least three times what it resolves along them at their
   // centroids (a surface at range is seen spread as far as the camera's depth steps).

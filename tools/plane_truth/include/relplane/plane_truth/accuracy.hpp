@@ -2,6 +2,7 @@
 // Precision, recall and errors of detected planes against truth, summed over frames.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct Accuracy {
   // With a camera model: the smallest ratio of a detection's RMS to the noise the camera
   // resolves along its normal at its centroid (infinity without one).
   double min_rms_to_camera = std::numeric_limits<double>::infinity();
+  // The largest angle between a detection's normal and the ray to its centroid, degrees: a
+  // camera returns no depth beyond its incidence limit, so no surface is seen beyond it.
+  double max_incidence_deg = 0.0;
   double Precision() const { return detected ? static_cast<double>(correct) / detected : 1.0; }
   double Recall() const { return true_planes ? static_cast<double>(recalled) / true_planes : 1.0; }
 };
@@ -37,6 +41,7 @@ class AccuracyTally {
   void AddMissed() { ++acc_.true_planes; }
   void AddRecalled(double angle_deg, double offset_m);
   void AddRmsToCamera(double ratio) { rms_ratios_.push_back(ratio); }
+  void AddIncidence(double deg) { acc_.max_incidence_deg = std::max(acc_.max_incidence_deg, deg); }
   Accuracy Summary() const;
 
  private:
