@@ -57,6 +57,22 @@ TEST(PlaneErrors, AFitTurnedAboutItsCentroidIsOffAtTheFootByTheLeverTimesTheTurn
   EXPECT_NEAR(errors[0].normal_error_deg, turn * 180.0 / M_PI, 1e-4);
 }
 
+// The detection's own RMS, and its extent along the wall seen from above.
+TEST(PlaneErrors, TheFitsOwnRmsAndHorizontalLengthGoAlong) {
+  const Vector3d normal(-1.0, 0.0, 0.0);
+  segmenter::DetectedPlane seen = Seen(normal, Vector3d(3, -1.8, 1.2));
+  seen.rms = 0.004f;
+  const Eigen::Isometry3d to_sensor = Sensor().inverse();
+  for (const Vector3d& corner : {Vector3d(3, -2.0, 0.5), Vector3d(3, -1.65, 0.5),
+                                 Vector3d(3, -1.65, 2.0), Vector3d(3, -2.0, 2.0)}) {
+    seen.vertices.push_back((to_sensor * corner).cast<float>());
+  }
+  const auto errors = PlaneErrors(4, Sensor(), {seen}, {Jamb()});
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NEAR(errors[0].rms_m, 0.004, 1e-7);
+  EXPECT_NEAR(errors[0].length_m, 0.35, 1e-5);
+}
+
 // A fit 1 cm nearer the sensor than the face is 1 cm off, positive, at both places; its normal
 // pointing away from the sensor changes nothing.
 TEST(PlaneErrors, AFitNearerTheSensorIsPositiveWhicheverWayItsNormalPoints) {
@@ -90,10 +106,12 @@ TEST(PlaneErrors, TheCsvHasAHeaderAndARowPerError) {
   e.centroid_error_m = 0.0001;
   e.foot_error_m = -0.0123;
   e.normal_error_deg = 1.25;
+  e.rms_m = 0.0042;
+  e.length_m = 0.375;
   EXPECT_EQ(PlaneErrorsCsv({e}),
             "seq,true_id,true_length_m,range_m,points,centroid_error_m,foot_error_m,"
-            "normal_error_deg\n"
-            "12,3,0.400,2.500,321,0.00010,-0.01230,1.2500\n");
+            "normal_error_deg,rms_m,length_m\n"
+            "12,3,0.400,2.500,321,0.00010,-0.01230,1.2500,0.00420,0.375\n");
 }
 
 }  // namespace

@@ -77,6 +77,15 @@ std::vector<PlaneError> PlaneErrors(int64_t seq, const Eigen::Isometry3d& sensor
     const double mn = normal.dot(n);
     e.foot_error_m = normal.dot(centroid - foot) / mn;  // |mn| >= cos_max
     e.normal_error_deg = std::atan2(n.cross(normal).norm(), std::abs(mn)) * 180.0 / M_PI;
+    e.rms_m = detection.rms;
+    const Eigen::Vector2d across = Eigen::Vector2d(-normal.y(), normal.x()).normalized();
+    double lo = 0.0, hi = 0.0;
+    for (size_t v = 0; v < detection.vertices.size(); ++v) {
+      const double s = across.dot((sensor * detection.vertices[v].cast<double>()).head<2>());
+      lo = v == 0 ? s : std::min(lo, s);
+      hi = v == 0 ? s : std::max(hi, s);
+    }
+    e.length_m = hi - lo;
     out.push_back(e);
   }
   return out;
@@ -84,12 +93,13 @@ std::vector<PlaneError> PlaneErrors(int64_t seq, const Eigen::Isometry3d& sensor
 
 std::string PlaneErrorsCsv(const std::vector<PlaneError>& errors) {
   std::string out =
-      "seq,true_id,true_length_m,range_m,points,centroid_error_m,foot_error_m,normal_error_deg\n";
-  char line[160];
+      "seq,true_id,true_length_m,range_m,points,centroid_error_m,foot_error_m,normal_error_deg,"
+      "rms_m,length_m\n";
+  char line[200];
   for (const PlaneError& e : errors) {
-    std::snprintf(line, sizeof line, "%lld,%d,%.3f,%.3f,%d,%.5f,%.5f,%.4f\n",
+    std::snprintf(line, sizeof line, "%lld,%d,%.3f,%.3f,%d,%.5f,%.5f,%.4f,%.5f,%.3f\n",
                   static_cast<long long>(e.seq), e.true_id, e.true_length_m, e.range_m, e.points,
-                  e.centroid_error_m, e.foot_error_m, e.normal_error_deg);
+                  e.centroid_error_m, e.foot_error_m, e.normal_error_deg, e.rms_m, e.length_m);
     out += line;
   }
   return out;

@@ -26,6 +26,11 @@ struct PlaneError {
   double centroid_error_m = 0.0;
   double foot_error_m = 0.0;
   double normal_error_deg = 0.0;  // between the fitted normal and the true one
+  // The detection's own account of its fit: its RMS and its horizontal extent, for judging the
+  // error against what the fit claims (an orientation sigma of about rms / (length sqrt(points /
+  // 12)) if its points' errors were independent).
+  double rms_m = 0.0;
+  double length_m = 0.0;
 };
 
 // The detections (sensor frame) of one frame taken at `sensor` (sensor to world) that lie on a
