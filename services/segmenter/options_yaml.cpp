@@ -169,7 +169,6 @@ ServiceOptions ReadServiceOptions(Reader& r) {
   ReadPositive(r, "layer_rms_share", &o.sensor.layer_rms_share);
   ReadPositive(r, "surface_sigma_max", &o.sensor.surface_sigma_max);
   ReadPositive(r, "grazing_margin_deg", &o.sensor.grazing_margin_deg);
-  ReadNonNegative(r, "range_cut_sigmas", &o.sensor.range_cut_sigmas);
   long max_points = static_cast<long>(s.max_points);
   ReadPositive(r, "max_points", &max_points);
   s.max_points = max_points;

@@ -55,14 +55,11 @@ void SegmenterService::OnCloud(point_cloud_t& msg) {
   nonfinite_total_ += result.dropped_nonfinite;
   layers_total_ += result.layer_planes;
   grazing_total_ += result.grazing_planes;
-  range_cut_total_ += result.range_cut_pieces;
   stats_.SetDetail(fmt::format(
       "planes {}, non-finite points dropped {} (total {}), planes the camera cannot see dropped: "
-      "depth layers {} (total {}), beyond its incidence {} (total {}), at its range cut {} "
-      "(total {})",
+      "depth layers {} (total {}), beyond its incidence {} (total {})",
       result.planes.size(), result.dropped_nonfinite, nonfinite_total_, result.layer_planes,
-      layers_total_, result.grazing_planes, grazing_total_, result.range_cut_pieces,
-      range_cut_total_));
+      layers_total_, result.grazing_planes, grazing_total_));
 }
 
 }  // namespace relplane::segmenter

@@ -33,9 +33,8 @@ class SegmenterService {
   int64_t max_points_;
   Segmenter segmenter_;
   int64_t nonfinite_total_ = 0;
-  int64_t layers_total_ = 0;     // planes dropped as one quantized depth value
-  int64_t grazing_total_ = 0;    // planes dropped as beyond the camera's incidence limit
-  int64_t range_cut_total_ = 0;  // wall pieces seen only at the camera's range cut
+  int64_t layers_total_ = 0;   // planes dropped as one quantized depth value
+  int64_t grazing_total_ = 0;  // planes dropped as beyond the camera's incidence limit
   // Kept from frame to frame so that steady state allocates no cloud or message arrays.
   Cloud cloud_;
   plane_set_t planes_msg_;

@@ -120,12 +120,10 @@ TEST(ServiceOptions, SensorPresetByName) {
     EXPECT_TRUE(o.segmenter.sensor.Known());
     EXPECT_EQ(o.segmenter.sensor.model.name, name);
   }
-  const ServiceOptions share = FromYaml(
-      "segmenter:\n  sensor: tof\n  layer_rms_share: 0.3\n  grazing_margin_deg: 4\n"
-      "  range_cut_sigmas: 0\n");
+  const ServiceOptions share =
+      FromYaml("segmenter:\n  sensor: tof\n  layer_rms_share: 0.3\n  grazing_margin_deg: 4\n");
   EXPECT_FLOAT_EQ(share.segmenter.sensor.layer_rms_share, 0.3f);
   EXPECT_FLOAT_EQ(share.segmenter.sensor.grazing_margin_deg, 4.0f);
-  EXPECT_FLOAT_EQ(share.segmenter.sensor.range_cut_sigmas, 0.0f);  // 0: off
   try {
     FromYaml("segmenter:\n  sensor: kinect\n");
     ADD_FAILURE() << "an unknown sensor loaded";

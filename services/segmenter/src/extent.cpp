@@ -159,8 +159,8 @@ void EstimateWallEnds(float ray_step, float share, float max_spacing, float rang
 // The kept pieces, described: trimmed refit and extent polygon. `index` receives each piece's
 // index in `out` (-1 when dropped).
 void Describe(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
-              std::vector<Piece>* pieces, std::vector<PieceStats>* out, std::vector<int32_t>* index,
-              int* range_cut_pieces) {
+              std::vector<Piece>* pieces, std::vector<PieceStats>* out,
+              std::vector<int32_t>* index) {
   const double max_variance =
       static_cast<double>(options.noise.sigma_max) * options.noise.sigma_max;
   const size_t num_cells = w->cells.size();
@@ -180,7 +180,7 @@ void Describe(const Cloud& cloud, const Options& options, PieceWorkspace::Buffer
   for (Piece& p : *pieces) {
     if (p.kept) TrimmedMoments(&p);
   }
-  *range_cut_pieces = IterateVerticalFits(cloud, options, w, pieces);
+  IterateVerticalFits(cloud, options, w, pieces);
   // The sensor's noise along its rays, pooled over the frame's pieces (the large ones weigh
   // most): a short piece's own residual also holds what is not noise (a corner's other face,
   // a bend), and a piece seen at a grazing angle divides it by little.
@@ -334,7 +334,7 @@ Description DescribeFormedPieces(const DescribeRequest& request, const Options& 
                    options.extents.range_cut_share * std::sqrt(furthest2), &pieces);
   std::vector<PieceStats> described;
   std::vector<int32_t> index;
-  Describe(cloud, options, &w, &pieces, &described, &index, &result.range_cut_pieces);
+  Describe(cloud, options, &w, &pieces, &described, &index);
   result.line_refits = LineRefits(planes, pieces, options);
   std::vector<int32_t> merged_into;
   std::vector<PieceStats> merged = MergeTouchingPieces(std::move(described), options, &merged_into);
@@ -350,8 +350,7 @@ Description DescribeFormedPieces(const DescribeRequest& request, const Options& 
   }
   if (piece_labels) {
     for (int32_t& l : *piece_labels) {
-      // A piece Describe did not keep (RangeCut) labels nothing.
-      if (l >= 0) l = index[l] >= 0 ? rank[merged_into[index[l]]] : -1;
+      if (l >= 0) l = rank[merged_into[index[l]]];
     }
   }
   return result;

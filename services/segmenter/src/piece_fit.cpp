@@ -66,48 +66,6 @@ double LowerMedian(std::vector<double>* values) {
   return std::max(0.0, (*values)[k]);
 }
 
-// With a known camera, each vertical piece refitted to its points whose depth on its fitted
-// plane lies inside the camera's range cut by SensorOptions::range_cut_sigmas: near the cut the
-// returns are censored on the measured depth and pull the fit towards the camera. A piece with
-// fewer than options.extents.min_points of its support left is not kept: where the camera's range
-// cuts a wall, nothing unbiased was seen of it. `points` holds each piece's fitted points
-// (relative to its trimmed centroid) from start[k] to start[k + 1].
-// Returns how many pieces it left unkept.
-int FitInsideRangeCut(const Options& options, const std::vector<int32_t>& start,
-                      const std::vector<Eigen::Vector3f>& points, std::vector<Piece>* pieces,
-                      std::vector<PlaneFit>* fits, std::vector<Eigen::Vector3f>* inside) {
-  int unkept = 0;
-  for (size_t k = 0; k < pieces->size(); ++k) {
-    const size_t total = static_cast<size_t>(start[k + 1] - start[k]);
-    PlaneFit& fit = (*fits)[k];
-    if (total == 0 || fit.count < 3) continue;
-    Piece& p = (*pieces)[k];
-    const Eigen::Vector3f origin = p.trimmed_centroid;
-    const Eigen::Vector3f n = fit.normal.cast<float>();
-    const float along_normal = n.dot(fit.centroid.cast<float>());  // the plane: n.x = this
-    inside->clear();
-    for (size_t i = 0; i < total; ++i) {
-      const Eigen::Vector3f& q = points[static_cast<size_t>(start[k]) + i];
-      const Eigen::Vector3f ray = q + origin;  // sensor frame: x is the depth
-      const float facing = n.dot(ray);
-      if (facing == 0.0f) continue;
-      const float depth = along_normal / facing * ray.x();  // where the ray meets the plane
-      if (!options.sensor.NearRangeCut(depth)) inside->push_back(q);
-    }
-    if (inside->size() == total) continue;
-    const double share = static_cast<double>(inside->size()) / static_cast<double>(total);
-    if (inside->size() < 3 || share * p.support < options.extents.min_points) {
-      p.kept = false;
-      ++unkept;
-      continue;
-    }
-    fit = IterateTrimmedFit(inside->data(), inside->size(), origin.cast<double>(), fit,
-                            options.extents.trim_sigmas, options.noise.sigma_min,
-                            options.extents.max_refits);
-  }
-  return unkept;
-}
-
 }  // namespace
 
 // Least-squares refit of a piece from its moments about `origin`; normal towards the sensor.
@@ -165,8 +123,8 @@ double RangeVariance(const Options& options, const Eigen::Vector3d& point) {
 // face at a convex corner drops out; a piece still leaning between two faces after that is fitted
 // to the line most of its points lie on (DominantLineFit). Walls only: the 2½D mapper uses
 // nothing else, and a floor holds most of a cloud's points.
-int IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
-                        std::vector<Piece>* pieces) {
+void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
+                         std::vector<Piece>* pieces) {
   // The fitted points (fit_order, grouped by cell) of each vertical piece, in one buffer.
   std::vector<int32_t>& start = w->piece_point_start;
   start.assign(pieces->size() + 1, 0);
@@ -216,15 +174,12 @@ int IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorkspa
                              RangeVariance(options, fits[k].centroid));
     }
   }
-  const int range_cut = options.sensor.Known() ? FitInsideRangeCut(options, start, points, pieces,
-                                                                   &fits, &w->uncensored_points)
-                                               : 0;
   // The sensor's noise along its rays, from the frame's vertical pieces: the lower median of
   // what each one's RMS implies, so that a leaning piece or two do not raise it. (Described
   // later, the ray-noise fit pools it over all pieces, weighed by their size.)
   const double sensor_variance = LowerMedian(&ray_variance);
   for (size_t k = 0; k < pieces->size(); ++k) {
-    if (start[k + 1] == start[k] || !(*pieces)[k].kept) continue;
+    if (start[k + 1] == start[k]) continue;
     Piece& p = (*pieces)[k];
     PlaneFit fit = fits[k];
     const double expected =
@@ -250,7 +205,6 @@ int IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorkspa
     p.rays = p.stride * RaysShare(fit.scatter, fit.centroid, fit.count);
     // TrimmedRefit (Describe) fits the piece to these moments.
   }
-  return range_cut;
 }
 
 }  // namespace relplane::segmenter

@@ -59,11 +59,9 @@ double RangeVariance(const Options& options, const Eigen::Vector3d& point);
 // Each kept vertical piece's least-squares fit, refitted over its fitted points within the trim
 // of the last fit until they settle (IterateTrimmedFit): what the piece took from a crossing
 // face at a convex corner drops out; a piece still leaning between two faces after that is fitted
-// to the line most of its points lie on (DominantLineFit). With a known camera each is fitted
-// to its points inside the camera's range cut, and not kept when too few are
-// (SensorOptions::range_cut_sigmas). Walls only: the 2½D mapper uses nothing else, and a floor
-// holds most of a cloud's points. Returns how many pieces the range cut left unkept.
-int IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
-                        std::vector<Piece>* pieces);
+// to the line most of its points lie on (DominantLineFit). Walls only: the 2½D mapper uses
+// nothing else, and a floor holds most of a cloud's points.
+void IterateVerticalFits(const Cloud& cloud, const Options& options, PieceWorkspace::Buffers* w,
+                         std::vector<Piece>* pieces);
 
 }  // namespace relplane::segmenter

@@ -76,8 +76,7 @@ struct PieceWorkspace::Buffers {
   std::vector<uint8_t> outer;                 // per cell: first or last of its piece on a line
   std::vector<int32_t> piece_point_start;     // per piece and one more: where its points start in
   std::vector<Eigen::Vector3f> piece_points;  // a vertical piece's fitted points, about its fit
-  std::vector<Eigen::Vector3f> uncensored_points;  // one piece's points inside the range cut
-  std::vector<Piece> pieces;                       // FormPieces' pieces, for DescribeFormedPieces
+  std::vector<Piece> pieces;                  // FormPieces' pieces, for DescribeFormedPieces
 };
 
 // In-plane axes: for a vertical plane u is horizontal and v points up, so the extent rectangle

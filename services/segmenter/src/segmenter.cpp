@@ -266,7 +266,6 @@ Result Segmenter::Segment(const Cloud& input) {
   const auto describe_formed = [&] {
     description = DescribeFormedPieces(request(), describe_options, &workspace_);
     result.planes = std::move(description.planes);
-    result.range_cut_pieces = description.range_cut_pieces;
   };
   const auto describe_all = [&] {
     form();

@@ -36,15 +36,6 @@ bool SensorOptions::BeyondIncidence(const Eigen::Vector3f& normal,
   return std::fabs(normal.dot(centroid)) / range < cos_limit;
 }
 
-bool SensorOptions::NearRangeCut(float depth) const {
-  if (!Known() || !(range_cut_sigmas > 0.0f)) return false;
-  const double z = depth;
-  const double near = model.min_depth + range_cut_sigmas * model.ResolvedSigma(model.min_depth);
-  if (z < near) return true;
-  if (!(model.max_depth < 1e6)) return false;  // no range cut to speak of
-  return z > model.max_depth - range_cut_sigmas * model.ResolvedSigma(model.max_depth);
-}
-
 float SensorOptions::CoplanarDistance(float base, const Eigen::Vector3f& normal_a,
                                       const Eigen::Vector3f& centroid_a,
                                       const Eigen::Vector3f& normal_b,

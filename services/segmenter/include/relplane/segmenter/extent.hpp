@@ -63,7 +63,6 @@ struct Description {
   std::vector<int32_t> piece_labels;
   std::vector<uint8_t> plane_has_piece;  // per mixture plane: whether it formed a kept piece
   std::vector<LineRefit> line_refits;    // the mixture planes whose piece was fitted to a line
-  int range_cut_pieces = 0;  // wall pieces not reported: seen only at the camera's range cut
 };
 
 // For every plane, the points labelled with it are binned into an occupancy grid in the

@@ -21,7 +21,6 @@ struct Result {
   int pieceless_planes = 0;       // mixture components dropped for having no piece
   int layer_planes = 0;           // mixture components dropped as quantization layers
   int grazing_planes = 0;         // mixture components dropped as beyond the camera's incidence
-  int range_cut_pieces = 0;       // wall pieces not reported: seen only at the camera's range cut
   int line_refits = 0;            // mixture planes set to their piece's line (DominantLineFit)
   int rounds = 0;                 // EM rounds run
   int reanchored = 0;             // seeds lost to the sensor's motion and kept, moved with it

@@ -32,13 +32,6 @@ struct SensorOptions {
   // of another surface spread along their rays by the depth noise: it is dropped and its points
   // assigned again. The margin covers the fitted normal's own error.
   float grazing_margin_deg = 2.0f;
-  // The camera reports no depth beyond max_depth (nor nearer than min_depth), judged on the depth
-  // it measures: near the cut the points that come back are those the noise brought nearer, so a
-  // wall there is fitted nearer than it is, and an oblique one turned towards the camera. A wall
-  // piece is fitted to its points whose depth on the fitted plane is at least this many of the
-  // camera's resolved sigmas inside the range (selected on the fit, not on the noisy depth, so
-  // the selection does not bias), and is not reported when too few are. 0 turns this off.
-  float range_cut_sigmas = 2.0f;
 
   bool Known() const { return !preset.empty(); }
   // Sets preset and model; false for an unknown name (nothing changed).
@@ -53,10 +46,6 @@ struct SensorOptions {
   // centroid's distance is at most its farthest point's, so the cosine of its incidence,
   // |normal . centroid| / |centroid|, is at least its least one among the points returned.
   bool BeyondIncidence(const Eigen::Vector3f& normal, const Eigen::Vector3f& centroid) const;
-  // Whether a surface at this depth (its true depth, e.g. on a fitted plane) is within
-  // range_cut_sigmas of the camera's range cut, where its returns are censored. False without a
-  // camera.
-  bool NearRangeCut(float depth) const;
   // How far apart two near-parallel planes (normals and centroids) may lie and be one surface:
   // `base`, or with a camera at least three times what it resolves along them at their
   // centroids (a surface at range is seen spread as far as the camera's depth steps).
