@@ -325,8 +325,8 @@ Result Segmenter::Segment(const Cloud& input) {
     describe_all();
   }
   if (options_.sensor.Known()) {
-    // One may remain where its surface's own mixture plane holds nothing else (a wall just
-    // beyond the camera's range, of which only its nearest depth value comes back): not
+    // A plane that is no surface may remain where its mixture plane holds nothing else (a wall
+    // just beyond the camera's range, of which only its nearest depth value comes back): not
     // reported.
     const SensorOptions& sensor = options_.sensor;
     const auto no_surface = [&sensor](const DetectedPlane& p) {
