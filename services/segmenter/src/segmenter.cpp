@@ -328,32 +328,24 @@ Result Segmenter::Segment(const Cloud& input) {
     // A plane that is no surface may remain where its mixture plane holds nothing else (a wall
     // just beyond the camera's range, of which only its nearest depth value comes back): not
     // reported.
-    const SensorOptions& sensor = options_.sensor;
-    const auto no_surface = [&sensor](const DetectedPlane& p) {
-      return Classify(sensor, p) != NoSurface::kSurface;
-    };
-    int layers = 0, grazing = 0;
-    for (const DetectedPlane& p : result.planes) {
-      const NoSurface k = Classify(sensor, p);
-      layers += k == NoSurface::kLayer;
-      grazing += k == NoSurface::kGrazing;
+    // Each plane's new index, -1 for one that goes; labels index the planes, so the dropped
+    // planes' points become unlabelled.
+    std::vector<int32_t> renumber(result.planes.size(), -1);
+    std::vector<DetectedPlane> kept;
+    for (size_t j = 0; j < result.planes.size(); ++j) {
+      const NoSurface k = Classify(options_.sensor, result.planes[j]);
+      result.layer_planes += k == NoSurface::kLayer;
+      result.grazing_planes += k == NoSurface::kGrazing;
+      if (k != NoSurface::kSurface) continue;
+      renumber[j] = static_cast<int32_t>(kept.size());
+      kept.push_back(std::move(result.planes[j]));
     }
-    if (layers + grazing > 0 && options_.keep_labels) {
-      // Labels index the planes: the dropped planes' points become unlabelled, the rest
-      // renumbered.
-      std::vector<int32_t> renumber(result.planes.size(), -1);
-      int32_t next = 0;
-      for (size_t j = 0; j < result.planes.size(); ++j) {
-        if (!no_surface(result.planes[j])) renumber[j] = next++;
-      }
+    if (kept.size() != result.planes.size() && options_.keep_labels) {
       for (int32_t& l : description.piece_labels) {
         if (l >= 0) l = renumber[static_cast<size_t>(l)];
       }
     }
-    result.planes.erase(std::remove_if(result.planes.begin(), result.planes.end(), no_surface),
-                        result.planes.end());
-    result.layer_planes += layers;
-    result.grazing_planes += grazing;
+    result.planes = std::move(kept);
   }
   const auto assigned =
       std::count_if(labels_.begin(), labels_.end(), [](int32_t l) { return l >= 0; });
