@@ -166,6 +166,29 @@ TEST(MapCleanup, TwoStretchesOfAWallSharingPartWhereTheViewCutBothAreOne) {
   ExpectBothStay(stretches(false));
 }
 
+TEST(MapCleanup, AWallEndAnotherStretchRunsPastWithItsOwnEndCutIsNoEnd) {
+  // Generated world 89 at 1 cm: a 6 m wall (x = 3.25, y 8-14) mapped from y = 14 to an end at
+  // y = 8.66 taken for static, and again from its corner y = 8 to y = 9.05 where the view cut
+  // it: 0.38 m shared, less than half of either. The second stretch saw the surface go on past
+  // the first's end, so that end is none: one wall over both, its ends the corner and y = 14.
+  auto stretches = [](bool cut) {
+    MappedPlane far = Mapped(1, {0, 2}, {5.34, 2}, 300);  // x = 5.34: the end taken for static
+    MappedPlane near = Mapped(2, {4.96, 2.002}, {6, 2.002}, 120);  // x = 4.96 cut by the view
+    near.end_known[1] = !cut;                                      // vertex 1 is a
+    near.both_ends_known = !cut;
+    return std::vector<MappedPlane>{far, near};
+  };
+  std::vector<MappedPlane> planes = stretches(true);
+  MergeDuplicateWalls(&planes);
+  ASSERT_EQ(planes.size(), 1u);
+  const MappedPlane& wall = Wall(planes, 1);
+  EXPECT_NEAR(wall.vertices[0].x(), 6.0, 1e-9);
+  EXPECT_NEAR(wall.vertices[1].x(), 0.0, 1e-9);
+  EXPECT_TRUE(wall.both_ends_known);
+  // Both ends in the shared stretch seen static: they contradict each other, and both stay.
+  ExpectBothStay(stretches(false));
+}
+
 TEST(MapCleanup, APieceAtACornerGoesOnceTheWallIsDrawnOnToTheCorner) {
   // hallway_out_and_back at 1 cm, seed 23: a 6 cm piece of wall at the corner x = 4, reaching a
   // centimetre past it, beside the wall's own end drawn 9.5 cm short of the corner. Before the

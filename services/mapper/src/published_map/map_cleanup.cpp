@@ -151,10 +151,14 @@ void MergeDuplicateWalls(std::vector<MappedPlane>* planes_in, const PublishedMap
         const double shorter = std::min(hi - lo, g1 - g0);
         const double shared = std::min(hi, g1) - std::max(lo, g0);
         // Where they overlap in part, the two ends inside the shared stretch: one of each wall's.
-        const bool cut_ends = g0 < lo ? !keep.end_known[0] && !gone.end_known[1]
-                                      : !keep.end_known[1] && !gone.end_known[0];
+        // Unless both were seen as wall ends, the two are one surface: a wall whose end there the
+        // view cut saw the surface go on past the other's end, so that end, however static it
+        // looked (§II.C), is none. Two ends both seen as wall ends that reach past each other
+        // contradict each other: both walls stay.
+        const bool both_ends = g0 < lo ? keep.end_known[0] && gone.end_known[1]
+                                       : keep.end_known[1] && gone.end_known[0];
         if (shared <= std::max(options.merge_distance, 0.5 * shorter) &&
-            !(cut_ends && shared > options.cut_overlap)) {
+            !(!both_ends && shared > options.cut_overlap)) {
           continue;
         }
         Extend(&keep, g0, g1, gone.observations);

@@ -253,8 +253,8 @@ struct PublishedMapOptions {
   double corner_radius = 0.1;
   double merge_angle = 0.05;    // rad: walls this close in orientation (and offset) are merged
   double merge_distance = 0.1;  // m
-  // m: two walls on one line sharing more than this where neither end in the shared stretch was
-  // ever seen as a wall end are one wall seen in two stretches.
+  // m: two walls on one line sharing more than this where the two ends in the shared stretch were
+  // not both seen as wall ends are one wall seen in two stretches.
   double cut_overlap = 0.2;
   // A wall end moves to a corner only inside the wall by up to this many corner radii, and by
   // at most this fraction of the wall's length from each end.
