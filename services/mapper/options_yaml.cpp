@@ -106,10 +106,12 @@ MapperOptions ReadMapperOptions(Reader& r) {
   cmp.Read("spread_scale", &o.comparison.spread_scale);
   cmp.Read("parallel_sin", &o.comparison.parallel_sin);
   cmp.Read("pooled_std", &o.comparison.pooled_std);
+  cmp.Read("edge_along_std", &o.comparison.edge_along_std);
   if (o.comparison.min_samples < 2) cmp.Fail("min_samples", "must be at least 2");
   Positive(cmp, "static_std", o.comparison.static_std);
   Positive(cmp, "spread_scale", o.comparison.spread_scale);
   Positive(cmp, "pooled_std", o.comparison.pooled_std);
+  Positive(cmp, "edge_along_std", o.comparison.edge_along_std);
   if (!(o.comparison.parallel_sin > 0.0 && o.comparison.parallel_sin < 1.0)) {
     cmp.Fail("parallel_sin", "must be between 0 and 1");
   }

@@ -152,6 +152,7 @@ StaticVerdict Judge(const SubInterval& s, const ComparisonOptions& options) {
       if (Std1(s.line[dir][i], n) <= options.static_std &&
           (motion >= options.min_motion || parallel)) {
         v.stats[dir].line_sum[i] += s.line[dir][i][0];
+        v.stats[dir].line_sq[i] += s.line[dir][i][1];
         v.stats[dir].line_count[i] += n;
       }
     }
@@ -228,6 +229,7 @@ DirectedStats::DirectedStats() {
       pair_count[i][j] = 0.0;
     }
     line_sum[i] = 0.0;
+    line_sq[i] = 0.0;
     line_count[i] = 0.0;
     short_line_sum[i] = 0.0;
     short_line_sq[i] = 0.0;
@@ -243,6 +245,7 @@ void DirectedStats::Add(const DirectedStats& other) {
       pair_count[i][j] += other.pair_count[i][j];
     }
     line_sum[i] += other.line_sum[i];
+    line_sq[i] += other.line_sq[i];
     line_count[i] += other.line_count[i];
     short_line_sum[i] += other.short_line_sum[i];
     short_line_sq[i] += other.short_line_sq[i];
@@ -260,6 +263,18 @@ double DirectedStats::PairStd(int i, int j) const {
   if (pair_count[i][j] <= 0.0) return 0.0;
   const Eigen::Vector2d mean = pair_sum[i][j] / pair_count[i][j];
   return std::sqrt(std::max(0.0, pair_sq[i][j] / pair_count[i][j] - mean.squaredNorm()));
+}
+
+double DirectedStats::LineStd(int i) const {
+  const bool judged = line_count[i] > 0.0;
+  const double count = judged ? line_count[i] : short_line_count[i];
+  if (count <= 0.0) return 0.0;
+  const double mean = (judged ? line_sum[i] : short_line_sum[i]) / count;
+  return std::sqrt(std::max(0.0, (judged ? line_sq[i] : short_line_sq[i]) / count - mean * mean));
+}
+
+double DirectedStats::LineCount(int i) const {
+  return line_count[i] > 0.0 ? line_count[i] : short_line_count[i];
 }
 
 bool DirectedStats::Line(int i, const ComparisonOptions& options, double* mean) const {

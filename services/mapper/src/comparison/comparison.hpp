@@ -25,6 +25,7 @@ struct DirectedStats {
   // B's line offset from A's edge i (n_B . (p - e_Ai) for p on B), over sub-intervals where
   // it was steady: pins B's line even when none of B's edges is static.
   double line_sum[2];
+  double line_sq[2];  // sum of squares, for the spread over all the steady sub-intervals
   double line_count[2];
   // The same for a parallel B over sub-intervals too short to judge edges on, pooled. A door
   // jamb's length flickers and each turn from growing to shrinking splits the interval (§II.C):
@@ -46,6 +47,10 @@ struct DirectedStats {
   // drifts slowly (occlusion) passes in each sub-interval but not over the whole interval.
   double PairStd(int i, int j) const;
   bool Line(int i, const ComparisonOptions& options, double* mean) const;
+  // The samples behind Line(i) and their standard deviation over all its sub-intervals
+  // together (sub-intervals each steady at different offsets: two surfaces, not one line).
+  double LineCount(int i) const;
+  double LineStd(int i) const;
   double PairCount(int i) const { return pair_count[i][0] + pair_count[i][1]; }
 };
 

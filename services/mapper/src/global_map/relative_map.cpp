@@ -270,6 +270,7 @@ void PlaceTheRest(const Group& group, const RelativeMapInputs& in,
   PlaceRest(group, in, comparison, map, order);
   RefineOrientations(in, map);
   RefinePoints(in, comparison, map);
+  RefineLines(in, comparison, map);
   for (auto it = map->members.begin(); it != map->members.end();) {
     const bool point = it->second.known == Known::kPoint || it->first == map->basis;
     it = point ? std::next(it) : map->members.erase(it);

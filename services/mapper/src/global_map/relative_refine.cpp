@@ -10,6 +10,25 @@ namespace relplane::mapper {
 
 using Eigen::Vector2d;
 
+namespace {
+
+// The point-placed members of `map`, the basis first; false when the basis is not point-placed
+// or no other member is.
+bool PointPlaced(RelativeMap* map, std::vector<int64_t>* ids, std::vector<Placement*>* placed) {
+  const auto basis = map->members.find(map->basis);
+  if (basis == map->members.end() || basis->second.known != Known::kPoint) return false;
+  *ids = {map->basis};
+  *placed = {&basis->second};
+  for (auto& [id, p] : map->members) {
+    if (id == map->basis || p.known != Known::kPoint) continue;
+    ids->push_back(id);
+    placed->push_back(&p);
+  }
+  return ids->size() >= 2;
+}
+
+}  // namespace
+
 // §II.D relative map: each member's orientation from all its comparisons with the others,
 // weighted by their information, rather than along the one chain that placed it: a chain through
 // a short piece beside a door (fitted degrees off as it shrinks to the jamb) turns the walls
@@ -69,18 +88,11 @@ void RefineOrientations(const RelativeMapInputs& in, RelativeMap* map) {
 // the offsets stay linear in the points.
 void RefinePoints(const RelativeMapInputs& in, const ComparisonOptions& comparison,
                   RelativeMap* map) {
-  const auto basis = map->members.find(map->basis);
-  if (basis == map->members.end() || basis->second.known != Known::kPoint) return;
   // Unknown k is member placed[k] (k >= 1); 0 is the basis, held.
-  std::vector<Placement*> placed{&basis->second};
-  std::vector<int64_t> ids{map->basis};
-  for (auto& [id, p] : map->members) {
-    if (id == map->basis || p.known != Known::kPoint) continue;
-    ids.push_back(id);
-    placed.push_back(&p);
-  }
+  std::vector<int64_t> ids;
+  std::vector<Placement*> placed;
+  if (!PointPlaced(map, &ids, &placed)) return;
   const int n = static_cast<int>(ids.size());
-  if (n < 2) return;
   // Each member's rotation, and its step from edge 0 to edge 1 when the wall has been seen whole.
   struct Frame {
     Eigen::Matrix2d rot;
@@ -162,6 +174,82 @@ void RefinePoints(const RelativeMapInputs& in, const ComparisonOptions& comparis
   for (int k = 1; k < n; ++k) {
     if (index[k] >= 0) placed[k]->point = solved.row(index[k]).transpose();
   }
+}
+
+// §II.D relative map: each point-placed member's line across its wall from the lines of its
+// parallel members, where it has them, by least squares with the basis held. A wall end is known
+// across its wall to its line's precision but along it only to where the segmenter's last column
+// on it fell (a column spacing or more either side of a corner, however often it is seen); a
+// pairing through a crossing wall's end carries that end's error along its wall into the
+// member's line, whereas two parallel walls' steady lines give their offset to millimetres. So
+// RefinePoints' solution stands along each wall and as the lines' prior, at `edge_along_std`;
+// each parallel line is weighed as a pairing's samples are (its samples over spread_scale^2,
+// half from either member's side). Lines that disagree with the others by more than parallel
+// fits do (`pooled_std`) are not one surface's: the worst is left out and the rest solved again.
+void RefineLines(const RelativeMapInputs& in, const ComparisonOptions& comparison,
+                 RelativeMap* map) {
+  // Unknown k - 1 is member placed[k]'s offset correction along its normal; 0 is the basis.
+  std::vector<int64_t> ids;
+  std::vector<Placement*> placed;
+  if (!PointPlaced(map, &ids, &placed)) return;
+  const int n = static_cast<int>(ids.size());
+  // A line of v from u's edge: nv . (point[v] + cv nv - point[u] - cu nu) - offset, which is
+  // r + cv - c cu with c = nv . nu and r its residual at RefinePoints' placement.
+  struct Line {
+    int u, v;
+    double c, r, w;
+  };
+  std::vector<Line> lines;
+  const double per_sample = 1.0 / (comparison.spread_scale * comparison.spread_scale);
+  for (int x = 0; x < n; ++x) {
+    for (int y = x + 1; y < n; ++y) {
+      const Comparison* cmp = in.comparisons.Find(ids[x], ids[y]);
+      if (cmp == nullptr || std::abs(std::sin(cmp->DeltaAlpha(ids[x]))) >= comparison.parallel_sin)
+        continue;
+      for (const auto& [u, v] : {std::pair{x, y}, std::pair{y, x}}) {
+        const DirectedStats& s = cmp->From(ids[u]);
+        // v's line from u's edge: the same from either edge of a parallel u.
+        for (int i = 0; i < 2; ++i) {
+          double offset = 0.0;
+          if (!s.Line(i, comparison, &offset) || s.LineStd(i) > comparison.static_std) continue;
+          const Vector2d nv = NormalOf(placed[v]->alpha);
+          lines.push_back({u, v, nv.dot(NormalOf(placed[u]->alpha)),
+                           nv.dot(placed[v]->point - placed[u]->point) - offset,
+                           0.5 * s.LineCount(i) * per_sample});
+          break;
+        }
+      }
+    }
+  }
+  const double prior = 1.0 / (comparison.edge_along_std * comparison.edge_along_std);
+  std::vector<bool> used(lines.size(), true);
+  Eigen::VectorXd dc = Eigen::VectorXd::Zero(n - 1);
+  while (true) {  // each round leaves a line out, or ends
+    Eigen::MatrixXd a = prior * Eigen::MatrixXd::Identity(n - 1, n - 1);
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n - 1);
+    for (size_t k = 0; k < lines.size(); ++k) {
+      if (!used[k]) continue;
+      const Line& l = lines[k];
+      const int iu = l.u - 1, iv = l.v - 1;  // -1: the basis, held
+      if (iv >= 0) a(iv, iv) += l.w, b(iv) -= l.w * l.r;
+      if (iu >= 0) a(iu, iu) += l.w * l.c * l.c, b(iu) += l.w * l.c * l.r;
+      if (iu >= 0 && iv >= 0) a(iu, iv) -= l.w * l.c, a(iv, iu) -= l.w * l.c;
+    }
+    dc = a.ldlt().solve(b);
+    if (!dc.allFinite()) return;
+    size_t worst = lines.size();
+    double worst_residual = comparison.pooled_std;
+    for (size_t k = 0; k < lines.size(); ++k) {
+      if (!used[k]) continue;
+      const Line& l = lines[k];
+      const double cu = l.u > 0 ? dc(l.u - 1) : 0.0, cv = l.v > 0 ? dc(l.v - 1) : 0.0;
+      const double residual = std::abs(l.r + cv - l.c * cu);
+      if (residual > worst_residual) worst = k, worst_residual = residual;
+    }
+    if (worst == lines.size()) break;
+    used[worst] = false;
+  }
+  for (int k = 1; k < n; ++k) placed[k]->point += dc(k - 1) * NormalOf(placed[k]->alpha);
 }
 
 }  // namespace relplane::mapper

@@ -15,4 +15,9 @@ void RefineOrientations(const RelativeMapInputs& in, RelativeMap* map);
 void RefinePoints(const RelativeMapInputs& in, const ComparisonOptions& comparison,
                   RelativeMap* map);
 
+// Each placed point moved across its wall to agree with its parallel members' lines, the points
+// along the walls held.
+void RefineLines(const RelativeMapInputs& in, const ComparisonOptions& comparison,
+                 RelativeMap* map);
+
 }  // namespace relplane::mapper

@@ -116,6 +116,11 @@ struct ComparisonOptions {
   // m: a parallel piece's line pooled over sub-intervals too short to judge (min_samples in all)
   // is read only if its offsets agree this closely (parallel fits agree to millimetres).
   double pooled_std = 0.01;
+  // m: a wall end's position along its wall is known to about this (one sigma) however often it
+  // is seen: where the segmenter's last column on the wall fell, a column spacing or more either
+  // side of a corner. A member's line placed through a crossing wall's end is known to this, and
+  // its parallel members' lines are weighed against it (relative_refine.cpp, §II.D).
+  double edge_along_std = 0.02;
 };
 
 // §II.D placing a group on the global map: its prior (its members as seen around when it was
