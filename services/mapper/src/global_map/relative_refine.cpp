@@ -184,8 +184,10 @@ void RefinePoints(const RelativeMapInputs& in, const ComparisonOptions& comparis
 // member's line, whereas two parallel walls' steady lines give their offset to millimetres. So
 // RefinePoints' solution stands along each wall and as the lines' prior, at `edge_along_std`;
 // each parallel line is weighed as a pairing's samples are (its samples over spread_scale^2,
-// half from either member's side). Lines that disagree with the others by more than parallel
-// fits do (`pooled_std`) are not one surface's: the worst is left out and the rest solved again.
+// half from either member's side). A line steady in each sub-interval at offsets that spread
+// over them by more than `static_std` is two surfaces', not taken; lines that disagree with the
+// others by more than parallel fits do (`pooled_std`) are not one surface's either: the worst is
+// left out and the rest solved again.
 void RefineLines(const RelativeMapInputs& in, const ComparisonOptions& comparison,
                  RelativeMap* map) {
   // Unknown k - 1 is member placed[k]'s offset correction along its normal; 0 is the basis.

@@ -1,7 +1,7 @@
 #pragma once
 // §II.D the averaging of a relative map: once the chain has placed a group's members, their
-// orientations and points are solved again from all the group's comparisons, not only the links
-// of the chain.
+// orientations, points and lines are solved again from all the group's comparisons, not only the
+// links of the chain.
 
 #include "global_map/relative_map.hpp"
 
