@@ -182,24 +182,28 @@ TEST(Comparison, AParallelLineIsKeptWhileAShortPlaneFlickersInLength) {
   }
 }
 
-TEST(Comparison, ShortSubIntervalsThatDisagreeOnAParallelLineGiveNone) {
-  // As above, but every other six iterations the piece taken for the jamb lies 0.3 m further
-  // (a recess's back wall registered to it): each sub-interval is steady on its own, together
-  // they are not, and the line is left unknown rather than placed between the two.
+// The end wall seen whole while the sensor drives along +x at `step` a frame, and a jamb's piece
+// that every other `period` iterations lies 0.3 m further (a recess's back wall registered to
+// it): each sub-interval is steady on its own, together they are not.
+Pair EndWallAndAlternatingJamb(int period, int n, double step) {
   ComparisonOptions options;
-  auto pose = [](int k) { return geometry::Pose2{0.03 * k, 0.0, 0.0}; };
+  auto pose = [step](int k) { return geometry::Pose2{step * k, 0.0, 0.0}; };
   auto jamb = [&](int k) {
-    const double x = (k / 6) % 2 == 0 ? 4.0 : 4.3;
-    const double len = (k / 6) % 2 == 0 ? 0.3 : 0.15;
+    const double x = (k / period) % 2 == 0 ? 4.0 : 4.3;
+    const double len = (k / period) % 2 == 0 ? 0.3 : 0.15;
     return testing::PartSeen(pose(k), {x, -1.3}, {x, -1.0}, 0.0, len, k);
   };
   Pair p{RltPlane(0, testing::PartSeen(pose(0), kEnd0, kEnd1, 0, 2, 0), 0.05, 1000),
          RltPlane(1, jamb(0), 0.05, 1000)};
-  for (int k = 1; k < 60; ++k) {
+  for (int k = 1; k < n; ++k) {
     p.a.Add(testing::PartSeen(pose(k), kEnd0, kEnd1, 0, 2, k));
     p.b.Add(jamb(k));
   }
-  p.c.Update(p.a, p.b, 59, options, 5);
+  p.c.Update(p.a, p.b, n - 1, options, 5);
+  return p;
+}
+
+void ExpectNoLine(const Pair& p) {
   for (int dir = 0; dir < 2; ++dir) {
     for (int i = 0; i < 2; ++i) {
       double offset = 0.0;
@@ -207,6 +211,22 @@ TEST(Comparison, ShortSubIntervalsThatDisagreeOnAParallelLineGiveNone) {
           << "from plane " << dir << ", edge " << i << ": " << offset;
     }
   }
+}
+
+TEST(Comparison, ShortSubIntervalsThatDisagreeOnAParallelLineGiveNone) {
+  // Sub-intervals of six iterations, too short to judge: the line is left unknown rather than
+  // placed between the two.
+  ExpectNoLine(EndWallAndAlternatingJamb(6, 60, 0.03));
+}
+
+TEST(Comparison, SubIntervalsLongEnoughToJudgeThatDisagreeOnAParallelLineGiveNone) {
+  // Sub-intervals of 20 iterations, each judged on its own (min_samples 10): no one line either
+  // (as for a static pairing's sub-intervals, §II.C).
+  const Pair p = EndWallAndAlternatingJamb(20, 120, 0.01);
+  for (int dir = 0; dir < 2; ++dir) {
+    for (int i = 0; i < 2; ++i) EXPECT_GT(p.c.From(dir).line_count[i], 0.0) << "judged, " << dir;
+  }
+  ExpectNoLine(p);
 }
 
 TEST(Comparison, PiecesOfOneWallWhoseEndsRideWithTheViewHaveNoStaticPairing) {

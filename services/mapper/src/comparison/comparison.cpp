@@ -279,6 +279,9 @@ double DirectedStats::LineCount(int i) const {
 
 bool DirectedStats::Line(int i, const ComparisonOptions& options, double* mean) const {
   if (line_count[i] > 0.0) {
+    // Steady in each sub-interval at offsets that spread over them more than one may: two
+    // surfaces, no line (as a static pairing's sub-intervals, §II.C).
+    if (LineStd(i) > options.static_std) return false;
     *mean = line_sum[i] / line_count[i];
     return true;
   }

@@ -213,7 +213,7 @@ void RefineLines(const RelativeMapInputs& in, const ComparisonOptions& compariso
         // v's line from u's edge: the same from either edge of a parallel u.
         for (int i = 0; i < 2; ++i) {
           double offset = 0.0;
-          if (!s.Line(i, comparison, &offset) || s.LineStd(i) > comparison.static_std) continue;
+          if (!s.Line(i, comparison, &offset)) continue;
           const Vector2d nv = NormalOf(placed[v]->alpha);
           lines.push_back({u, v, nv.dot(NormalOf(placed[u]->alpha)),
                            nv.dot(placed[v]->point - placed[u]->point) - offset,
