@@ -285,13 +285,8 @@ bool DirectedStats::Line(int i, const ComparisonOptions& options, double* mean) 
     *mean = line_sum[i] / line_count[i];
     return true;
   }
-  if (short_line_count[i] < options.min_samples) return false;
-  const double m = short_line_sum[i] / short_line_count[i];
-  if (std::sqrt(std::max(0.0, short_line_sq[i] / short_line_count[i] - m * m)) >
-      options.pooled_std) {
-    return false;
-  }
-  *mean = m;
+  if (short_line_count[i] < options.min_samples || LineStd(i) > options.pooled_std) return false;
+  *mean = short_line_sum[i] / short_line_count[i];
   return true;
 }
 
