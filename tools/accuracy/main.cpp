@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -30,6 +31,7 @@ struct Flags {
   std::vector<std::string> scenarios;
   std::string seeds;
   std::string world_seeds;
+  std::string world_kind;
   int generated = 0;
   double sigma = -1.0;
   int laps = 0;
@@ -53,8 +55,44 @@ std::string WriteFile(const std::string& path, const std::string& text) {
 
 std::string StemOf(const std::string& file) {
   std::string stem = file.substr(file.find_last_of('/') + 1);
-  if (stem.size() > 5 && stem.compare(stem.size() - 5, 5, ".yaml") == 0) stem.resize(stem.size() - 5);
+  if (stem.size() > 5 && stem.compare(stem.size() - 5, 5, ".yaml") == 0)
+    stem.resize(stem.size() - 5);
   return stem;
+}
+
+// Keeps the runs whose world is of kind `label` (WorldKind::Label), classified on `jobs`
+// threads (one per core when 0).
+void KeepKind(const std::string& label, int jobs, std::vector<RunSpec>* specs,
+              std::vector<SweepRun>* runs) {
+  std::vector<char> keep(specs->size(), 0);
+  std::vector<std::string> errors(specs->size());
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (size_t i = next++; i < specs->size(); i = next++) {
+      try {
+        keep[i] = ClassifyScenario((*specs)[i]).Label() == label;
+      } catch (const std::exception& e) {
+        errors[i] = e.what();
+      }
+    }
+  };
+  const int threads_wanted =
+      jobs > 0 ? jobs : static_cast<int>(std::thread::hardware_concurrency());
+  std::vector<std::thread> threads;
+  for (int t = 0; t < std::max(1, threads_wanted); ++t) threads.emplace_back(worker);
+  for (std::thread& t : threads) t.join();
+  for (const std::string& error : errors) {
+    if (!error.empty()) throw std::runtime_error(error);
+  }
+  std::vector<RunSpec> kept_specs;
+  std::vector<SweepRun> kept_runs;
+  for (size_t i = 0; i < specs->size(); ++i) {
+    if (!keep[i]) continue;
+    kept_specs.push_back((*specs)[i]);
+    kept_runs.push_back((*runs)[i]);
+  }
+  *specs = std::move(kept_specs);
+  *runs = std::move(kept_runs);
 }
 
 int Main(int argc, char** argv) {
@@ -74,30 +112,44 @@ int Main(int argc, char** argv) {
              "generated worlds: run each scenario (default random_indoor) in each of these worlds "
              "(sim.world.generators[0].seed). Development: 1-999; held out: 100001-100999 "
              "(docs/decisions/generated-worlds.md)");
-  parser.Add("--generated", &f.generated,
-             "generated worlds: the first N of the development range (--world-seeds 1-N)")
+  parser.Add("--world-kind", &f.world_kind,
+             "generated worlds: run only those of this kind, from their true poses before any "
+             "run: observable (the walls in view fix every frame), short (stretches they do not "
+             "fix, none of 1 s), long (one of 1 s or more)");
+  parser
+      .Add("--generated", &f.generated,
+           "generated worlds: the first N of the development range (--world-seeds 1-N)")
       .Positive();
   parser.Add("--sigma", &f.sigma, "sensor noise in metres (default: the scenario's)");
   parser.Add("--laps", &f.laps, "times round a closed trajectory (default: the scenario's)")
       .Positive();
   parser.Add("--set", &f.overrides, "override a scenario key, key.path=value (repeatable)")
       .OneValuePerUse();
-  parser.Add("--min-wall-length", &f.min_wall_length_m, "true walls shorter than this are not "
-             "scored, metres").NonNegative().ShowDefault();
-  parser.Add("--ate-max", &f.targets.ate_rmse_m, "target: ATE RMSE, metres").NonNegative()
+  parser
+      .Add("--min-wall-length", &f.min_wall_length_m,
+           "true walls shorter than this are not "
+           "scored, metres")
+      .NonNegative()
       .ShowDefault();
-  parser.Add("--duplicates-max", &f.targets.duplicates, "target: duplicate walls").NonNegative()
+  parser.Add("--ate-max", &f.targets.ate_rmse_m, "target: ATE RMSE, metres")
+      .NonNegative()
+      .ShowDefault();
+  parser.Add("--duplicates-max", &f.targets.duplicates, "target: duplicate walls")
+      .NonNegative()
       .ShowDefault();
   parser.Add("--normal-max", &f.targets.normal_deg, "target: worst wall normal, degrees")
-      .NonNegative().ShowDefault();
+      .NonNegative()
+      .ShowDefault();
   parser.Add("--offset-max", &f.targets.offset_m, "target: worst wall offset, metres")
-      .NonNegative().ShowDefault();
+      .NonNegative()
+      .ShowDefault();
   parser.Add("--jobs,-j", &f.jobs, "runs at once (default: one per core)").NonNegative();
   parser.Add("--json", &f.json, "also write every run's metrics and the summaries to FILE");
   parser.Add("--baseline", &f.baseline,
              "compare with an earlier sweep's --json FILE: runs now "
              "met and now missed, ATE better and worse, run by run");
-  parser.Add("--frames", &f.frames_dir, "also write each run's poses, frame by frame, to "
+  parser.Add("--frames", &f.frames_dir,
+             "also write each run's poses, frame by frame, to "
              "DIR/SCENARIO-seedN.csv");
   parser.Add(
       "--planes", &f.planes_dir,
@@ -112,6 +164,14 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "relplane-accuracy: give a scenario, or --generated N (see --help)\n");
     return cli::kExitConfig;
   }
+  const std::map<std::string, std::string> kinds = {{"observable", "observable"},
+                                                    {"short", "unobservable < 1 s"},
+                                                    {"long", "unobservable >= 1 s"}};
+  if (!f.world_kind.empty() && kinds.count(f.world_kind) == 0) {
+    std::fprintf(stderr, "relplane-accuracy: --world-kind %s: expected observable, short or long\n",
+                 f.world_kind.c_str());
+    return cli::kExitConfig;
+  }
 
   // Everything is checked before the first run: a typo fails now, not after minutes.
   std::vector<uint64_t> seeds = {0};
@@ -124,7 +184,8 @@ int Main(int argc, char** argv) {
     if (!f.seeds.empty()) seeds = ParseSeeds(f.seeds);
     std::vector<uint64_t> worlds = {0};  // 0: the scenario's own world
     if (!f.world_seeds.empty()) worlds = ParseSeeds(f.world_seeds);
-    if (f.sigma >= 0.0) base_overrides.push_back("sim.sensor.noise_sigma=" + std::to_string(f.sigma));
+    if (f.sigma >= 0.0)
+      base_overrides.push_back("sim.sensor.noise_sigma=" + std::to_string(f.sigma));
     if (f.laps > 0) base_overrides.push_back("sim.trajectory.laps=" + std::to_string(f.laps));
     for (const std::string& name : f.scenarios) {
       const std::string file = launch::ResolveScenarioFile(name, kScenariosDir);
@@ -160,8 +221,21 @@ int Main(int argc, char** argv) {
     return cli::kExitConfig;
   }
 
-  const int jobs = std::max(1, std::min<int>(f.jobs > 0 ? f.jobs : std::thread::hardware_concurrency(),
-                                             static_cast<int>(specs.size())));
+  if (!f.world_kind.empty()) {
+    const size_t before = specs.size();
+    try {
+      KeepKind(kinds.at(f.world_kind), f.jobs, &specs, &runs);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "relplane-accuracy: %s\n", e.what());
+      return cli::kExitConfig;
+    }
+    std::printf("relplane-accuracy: %zu of %zu runs are in %s worlds\n", specs.size(), before,
+                kinds.at(f.world_kind).c_str());
+    if (specs.empty()) return 0;
+  }
+  const int jobs =
+      std::max(1, std::min<int>(f.jobs > 0 ? f.jobs : std::thread::hardware_concurrency(),
+                                static_cast<int>(specs.size())));
   std::printf("relplane-accuracy: %zu runs on %d thread%s\n", specs.size(), jobs,
               jobs > 1 ? "s" : "");
   std::fflush(stdout);

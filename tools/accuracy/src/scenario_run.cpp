@@ -90,6 +90,10 @@ Sections ReadSections(const RunSpec& spec) {
 
 void CheckScenario(const RunSpec& spec) { ReadSections(spec); }
 
+WorldKind ClassifyScenario(const RunSpec& spec) {
+  return ClassifyWorld(sim::Simulation(ReadSections(spec).sim.sim));
+}
+
 RunResult RunScenario(const RunSpec& spec) {
   const Sections sections = ReadSections(spec);
   const sim::ServiceOptions& sim_options = sections.sim;

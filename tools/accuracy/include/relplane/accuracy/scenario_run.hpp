@@ -42,11 +42,11 @@ struct RunResult {
   // seen only in pieces is matched by one piece, whose far end lies metres from the wall's end.
   std::vector<double> reached_ends;
   int64_t frames = 0;
-  int64_t lost_frames = 0;          // poses with status LOST
-  int64_t motion_model_frames = 0;  // poses with status MOTION_MODEL (§II.E)
-  int64_t rejected_frames = 0;      // a conversion refused the message: counted, not mapped
-  int64_t rejected_odometry = 0;    // ODOMETRY readings refused (bad or out of order)
-  std::vector<FramePose> poses;     // every frame's
+  int64_t lost_frames = 0;               // poses with status LOST
+  int64_t motion_model_frames = 0;       // poses with status MOTION_MODEL (§II.E)
+  int64_t rejected_frames = 0;           // a conversion refused the message: counted, not mapped
+  int64_t rejected_odometry = 0;         // ODOMETRY readings refused (bad or out of order)
+  std::vector<FramePose> poses;          // every frame's
   std::vector<PlaneError> plane_errors;  // with RunSpec::plane_errors: every frame's walls
   // Where each true wall of map.walls stands, seen from above (same order): which wall a run's
   // worst error is on.
@@ -55,8 +55,13 @@ struct RunResult {
   WorldKind kind;
 };
 
-// Reads every section `spec` gives the services, as RunScenario does, and runs nothing. Throws as RunScenario.
+// Reads every section `spec` gives the services, as RunScenario does, and runs nothing. Throws as
+// RunScenario.
 void CheckScenario(const RunSpec& spec);
+
+// The kind of world `spec` drives through (world_kind.hpp), from its true poses alone: nothing
+// is sensed, segmented or mapped. Throws as RunScenario.
+WorldKind ClassifyScenario(const RunSpec& spec);
 
 // Runs `spec` to its last frame. Throws config::ConfigError with a one-line reason for a missing
 // file, malformed YAML, a bad override or an invalid section (unknown key, wrong type), before
