@@ -199,6 +199,42 @@ TEST(Localisation, AWallMappedAPilastersDepthOffIsLeftOut) {
   EXPECT_NEAR(WithOneWallMappedOff(0.1).pose.y, -0.1 / 3.0, 1e-3);
 }
 
+// A corridor's left wall (y = 1) and right wall (y = -1), the end wall (x = 4), and two short
+// pieces on the right whose groups mapped them off across the corridor: one by `far_off` (a
+// wall misregistered), one by `near_off` (a recess's back mapped through a creeping end). Traced
+// on generated world 890, noise-free: a 0.23 m piece 25 cm off and a recess back 8.6 cm off
+// pulled the least squares to the recess back's line; without the first, the second was still
+// 5.5 cm off, the trial failed, and the pose stayed 8.6 cm across the corridor.
+PoseEstimate WithTwoWallsMappedOff(double far_off, double near_off, bool with_left_wall) {
+  std::vector<Observation> seen = {
+      WallOnLine(M_PI / 2, 1.0, -3.0, -1.0, 4000, 0.005),   // right wall (x from 1 to 3)
+      WallOnLine(M_PI / 2, 1.0, -3.5, -3.2, 600, 0.005),    // a short piece on the right
+      WallOnLine(M_PI / 2, 1.0, -0.8, -0.5, 600, 0.005),    // another
+      WallOnLine(M_PI, 4.0, -1.0, 1.0, 3000, 0.005),        // end wall
+      WallOnLine(-M_PI / 2, 1.0, -1.0, 3.0, 4000, 0.005)};  // left wall
+  if (!with_left_wall) seen.pop_back();
+  for (Observation& obs : seen) obs.iteration = 1;
+  std::vector<RltPlane> planes;
+  std::vector<Sighting> sightings = WhereSeen(seen, &planes);
+  sightings[1].world.point.y() -= far_off;
+  sightings[2].world.point.y() -= near_off;
+  return Localise(sightings, {0.0, 0.0, 0.0}, LearnedFrustum(), {}, FitOptions{});
+}
+
+TEST(Localisation, ASecondWallMappedOffIsLeftOutWhereTheRestAgreeWithoutBoth) {
+  const PoseEstimate both = WithTwoWallsMappedOff(0.25, 0.086, true);
+  EXPECT_EQ(both.status, PoseStatus::kTracking);
+  EXPECT_NEAR(both.pose.y, 0.0, 1e-3);
+  EXPECT_NEAR(both.pose.x, 0.0, 1e-3);
+  // Without the left wall the walls left would be no more than the two left out: the pose
+  // keeps every wall, as it did (the mapped lines moved towards -y, and the pose with them).
+  const PoseEstimate few = WithTwoWallsMappedOff(0.25, 0.12, false);
+  EXPECT_NEAR(few.pose.y, -(0.25 + 0.12) / 3.0, 1e-3);
+  // A second wall within `suspect` of the rest once the first is out is kept: only the first
+  // is left out.
+  EXPECT_NEAR(WithTwoWallsMappedOff(0.25, 0.03, true).pose.y, -0.03 / 3.0, 1e-3);
+}
+
 // A sliver of the left wall (y = 1, 0.1 m of it seen 2 m ahead) whose fit came out 2 degrees off,
 // turned about the middle of its points, and the end wall (x = 4): only the sliver tells the
 // position across the hallway. Its line is good where its points are; extrapolated to the foot

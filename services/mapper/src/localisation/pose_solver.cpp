@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include "comparison/comparison.hpp"
@@ -323,6 +324,36 @@ int WorstFit(const std::vector<Sighting>& sightings, const std::vector<bool>& us
   return lines < 3 ? -1 : worst_k;
 }
 
+// The trial without the worst-fitting wall failed: is a second wall off, the pose the first one
+// dragged hiding it? Two walls misplaced by different amounts on one side can pull the pose
+// onto the smaller error, so that without the worse one the other still disagrees. The trial
+// without both holds where the rest still fix the position, agree among themselves and are more
+// than the two left out, the first is off by more than a map's error and the second by more than
+// `suspect` (§II.D: a mis-registered wall must not drag the pose). Returns the pose without
+// both, or nothing.
+std::optional<PoseEstimate> WithoutASecond(const std::vector<Sighting>& sightings,
+                                           std::vector<bool>* use, int first,
+                                           const PoseEstimate& without_first,
+                                           const MotionContext& m, const FitOptions& fit) {
+  const LocalisationOptions& options = m.options;
+  const int second = WorstFit(sightings, *use, without_first.pose, options);
+  if (second < 0) return std::nullopt;
+  (*use)[second] = false;
+  const PoseEstimate without = SolveOnce(sightings, *use, EstimateHeading(sightings, *use, fit), m);
+  int kept = 0;
+  bool holds = without.status == PoseStatus::kTracking &&
+               std::abs(Residual(sightings[first], without.pose)) > options.misregistered &&
+               std::abs(Residual(sightings[second], without.pose)) > options.suspect;
+  for (size_t k = 0; k < sightings.size() && holds; ++k) {
+    if (!(*use)[k] || !Placed(sightings[k])) continue;
+    ++kept;
+    holds = std::abs(Residual(sightings[k], without.pose)) < options.suspect;
+  }
+  if (holds && kept > 2) return without;
+  (*use)[second] = true;
+  return std::nullopt;
+}
+
 }  // namespace
 
 Prediction LearntVelocity(int iterations, const LocalisationOptions& options) {
@@ -354,7 +385,11 @@ PoseEstimate Localise(const std::vector<Sighting>& sightings, const geometry::Po
     }
     out = SolveOnce(sightings, use, heading, m);
     if (suspect >= 0) {
-      if (!TrialHolds(sightings, use, suspect, out, options)) out = with_suspect;
+      if (!TrialHolds(sightings, use, suspect, out, options)) {
+        const std::optional<PoseEstimate> without =
+            WithoutASecond(sightings, &use, suspect, out, m, fit);
+        out = without ? *without : with_suspect;
+      }
       break;
     }
     if (round == 0 && DropOutliers(sightings, out.pose, options, &use)) continue;
