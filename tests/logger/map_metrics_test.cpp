@@ -122,6 +122,24 @@ TEST(MapMetrics, APilasterFaceMappedOnItGoesToTheFaceNotTheLongerWallBehind) {
   EXPECT_LT(m.offset_error_m.max, 0.02);
 }
 
+TEST(MapMetrics, AShortFaceMappedOnItIsNotADuplicateOfTheWallBehind) {
+  // A partition's 0.25 m end face 0.2 m out from the south wall, too short to be scored, mapped
+  // 3 cm off: it lies along the south wall too, and was counted as the south wall mapped twice
+  // (generated world 232, noise-free: two duplicates that were partition ends).
+  MapSnapshot world = Room();
+  world.planes.push_back(Wall(7, {1.8, -1.8}, {2.05, -1.8}));
+  MapSnapshot map = PerfectMap();
+  map.planes.push_back(Wall(40, {1.8, -1.77}, {2.05, -1.77}));
+  const MapMetrics m = Score(map, world);
+  EXPECT_EQ(m.true_walls, 4);
+  EXPECT_EQ(m.duplicates, 0);
+  EXPECT_EQ(m.on_short_walls, 1);
+  EXPECT_EQ(m.walls[0].mapped_ids, std::vector<int64_t>{10});
+  // Mapped on neither, nearer the south wall, it is the south wall's duplicate, as before.
+  map.planes.back() = Wall(40, {1.8, -1.92}, {2.05, -1.92});
+  EXPECT_EQ(Score(map, world).duplicates, 1);
+}
+
 TEST(MapMetrics, AWallMappedPastAPilasterStillGoesToTheWall) {
   MapSnapshot world = Room();
   world.planes.push_back(Wall(7, {1.8, -1.7}, {2.3, -1.7}));

@@ -324,31 +324,39 @@ MapMetrics ComputeMapMetrics(const MapSnapshot& world, const MapSnapshot& map,
   std::vector<std::vector<std::pair<Candidate, int64_t>>> matches(true_walls.size());
   for (const WallLine& w : mapped) {
     const double along_most = 0.5 * w.segment.Length();
-    int best = -1;
-    Candidate best_c;
-    bool best_along = false;
-    for (size_t t = 0; t < true_walls.size(); ++t) {
-      const Candidate c = Compare(true_walls[t], w, options.match);
-      if (!c.ok) continue;
-      const bool along = c.overlap_m >= along_most;
-      const bool better =
-          best < 0 || (along && !best_along) ||
-          (along == best_along &&
-           (along ? c.offset_m < best_c.offset_m
-                  : c.overlap_m > best_c.overlap_m ||
-                        (c.overlap_m == best_c.overlap_m && c.offset_m < best_c.offset_m)));
-      if (better) {
-        best = static_cast<int>(t);
-        best_c = c;
-        best_along = along;
+    // The best of `walls` for w: -1 if none compares.
+    auto best_of = [&](const std::vector<WallLine>& walls, Candidate* best_c, bool* best_along) {
+      int best = -1;
+      for (size_t t = 0; t < walls.size(); ++t) {
+        const Candidate c = Compare(walls[t], w, options.match);
+        if (!c.ok) continue;
+        const bool along = c.overlap_m >= along_most;
+        const bool better =
+            best < 0 || (along && !*best_along) ||
+            (along == *best_along &&
+             (along ? c.offset_m < best_c->offset_m
+                    : c.overlap_m > best_c->overlap_m ||
+                          (c.overlap_m == best_c->overlap_m && c.offset_m < best_c->offset_m)));
+        if (better) {
+          best = static_cast<int>(t);
+          *best_c = c;
+          *best_along = along;
+        }
       }
-    }
-    if (best < 0) {
+      return best;
+    };
+    Candidate best_c, short_c;
+    bool best_along = false, short_along = false;
+    const int best = best_of(true_walls, &best_c, &best_along);
+    const int on_short = best_of(short_walls, &short_c, &short_along);
+    // The short surfaces (a partition's end face, a jamb) take part in the same rule: one mapped
+    // on its surface is that surface, not a second version of a scored wall further off that it
+    // also lies along (as a pilaster's face above), and it is not scored.
+    const bool short_is_nearer =
+        on_short >= 0 && short_along && (!best_along || short_c.offset_m < best_c.offset_m);
+    if (best < 0 || short_is_nearer) {
       // A mapped jamb where a jamb is is not spurious, only not scored.
-      const bool on_short_wall =
-          std::any_of(short_walls.begin(), short_walls.end(),
-                      [&](const WallLine& s) { return Compare(s, w, options.match).ok; });
-      if (on_short_wall) {
+      if (on_short >= 0) {
         ++m.on_short_walls;
       } else if (m.has_truth) {
         m.spurious_ids.push_back(w.id);
