@@ -201,7 +201,7 @@ TEST(Localisation, AWallMappedAPilastersDepthOffIsLeftOut) {
 
 // A corridor's left wall (y = 1) and right wall (y = -1), the end wall (x = 4), and two short
 // pieces on the right whose groups mapped them off across the corridor: one by `far_off` (a
-// wall misregistered), one by `near_off` (a recess's back mapped through a creeping end). Traced
+// wall misregistered), one by `near_off` (a recess's back its group placed off). Traced
 // on generated world 890, noise-free: a 0.23 m piece 25 cm off and a recess back 8.6 cm off
 // pulled the least squares to the recess back's line; without the first, the second was still
 // 5.5 cm off, the trial failed, and the pose stayed 8.6 cm across the corridor.

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -60,27 +61,32 @@ std::string StemOf(const std::string& file) {
   return stem;
 }
 
+// Calls fn(i) for every i below n on `jobs` threads, each taking the next i as it is done.
+void OnThreads(size_t n, int jobs, const std::function<void(size_t)>& fn) {
+  std::atomic<size_t> next{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < std::max(1, jobs); ++t) {
+    threads.emplace_back([&] {
+      for (size_t i = next++; i < n; i = next++) fn(i);
+    });
+  }
+  for (std::thread& t : threads) t.join();
+}
+
 // Keeps the runs whose world is of kind `label` (WorldKind::Label), classified on `jobs`
 // threads (one per core when 0).
 void KeepKind(const std::string& label, int jobs, std::vector<RunSpec>* specs,
               std::vector<SweepRun>* runs) {
   std::vector<char> keep(specs->size(), 0);
   std::vector<std::string> errors(specs->size());
-  std::atomic<size_t> next{0};
-  auto worker = [&] {
-    for (size_t i = next++; i < specs->size(); i = next++) {
-      try {
-        keep[i] = ClassifyScenario((*specs)[i]).Label() == label;
-      } catch (const std::exception& e) {
-        errors[i] = e.what();
-      }
-    }
-  };
-  const int threads_wanted =
-      jobs > 0 ? jobs : static_cast<int>(std::thread::hardware_concurrency());
-  std::vector<std::thread> threads;
-  for (int t = 0; t < std::max(1, threads_wanted); ++t) threads.emplace_back(worker);
-  for (std::thread& t : threads) t.join();
+  OnThreads(specs->size(), jobs > 0 ? jobs : static_cast<int>(std::thread::hardware_concurrency()),
+            [&](size_t i) {
+              try {
+                keep[i] = ClassifyScenario((*specs)[i]).Label() == label;
+              } catch (const std::exception& e) {
+                errors[i] = e.what();
+              }
+            });
   for (const std::string& error : errors) {
     if (!error.empty()) throw std::runtime_error(error);
   }
@@ -127,8 +133,7 @@ int Main(int argc, char** argv) {
       .OneValuePerUse();
   parser
       .Add("--min-wall-length", &f.min_wall_length_m,
-           "true walls shorter than this are not "
-           "scored, metres")
+           "true walls shorter than this are not scored, metres")
       .NonNegative()
       .ShowDefault();
   parser.Add("--ate-max", &f.targets.ate_rmse_m, "target: ATE RMSE, metres")
@@ -239,45 +244,38 @@ int Main(int argc, char** argv) {
   std::printf("relplane-accuracy: %zu runs on %d thread%s\n", specs.size(), jobs,
               jobs > 1 ? "s" : "");
   std::fflush(stdout);
-  std::atomic<size_t> next{0};
   std::atomic<size_t> done{0};
   std::mutex print;
   std::vector<std::string> errors(specs.size());
-  auto worker = [&] {
-    for (size_t i = next++; i < specs.size(); i = next++) {
-      const auto start = std::chrono::steady_clock::now();
-      try {
-        runs[i].result = RunScenario(specs[i]);
-        runs[i].misses = Misses(runs[i].result, f.targets);
-      } catch (const std::exception& e) {
-        errors[i] = e.what();
-      }
-      const std::string stem = runs[i].scenario + "-seed" + std::to_string(runs[i].seed);
-      if (errors[i].empty() && !f.frames_dir.empty()) {
-        errors[i] = WriteFile(f.frames_dir + "/" + stem + ".csv", FramesCsv(runs[i].result));
-      }
-      if (errors[i].empty() && !f.planes_dir.empty()) {
-        errors[i] = WriteFile(f.planes_dir + "/" + stem + "-planes.csv",
-                              PlaneErrorsCsv(runs[i].result.plane_errors));
-      }
-      runs[i].seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::lock_guard<std::mutex> lock(print);
-      const size_t n = ++done;
-      if (errors[i].empty()) {
-        std::printf("[%zu/%zu] %s (%.1f s)\n", n, specs.size(), RunLine(runs[i]).c_str(),
-                    runs[i].seconds);
-      } else {
-        std::printf("[%zu/%zu] %s seed %llu: failed: %s\n", n, specs.size(),
-                    runs[i].scenario.c_str(), static_cast<unsigned long long>(runs[i].seed),
-                    errors[i].c_str());
-      }
-      std::fflush(stdout);
+  OnThreads(specs.size(), jobs, [&](size_t i) {
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      runs[i].result = RunScenario(specs[i]);
+      runs[i].misses = Misses(runs[i].result, f.targets);
+    } catch (const std::exception& e) {
+      errors[i] = e.what();
     }
-  };
-  std::vector<std::thread> threads;
-  for (int t = 0; t < jobs; ++t) threads.emplace_back(worker);
-  for (std::thread& t : threads) t.join();
+    const std::string stem = runs[i].scenario + "-seed" + std::to_string(runs[i].seed);
+    if (errors[i].empty() && !f.frames_dir.empty()) {
+      errors[i] = WriteFile(f.frames_dir + "/" + stem + ".csv", FramesCsv(runs[i].result));
+    }
+    if (errors[i].empty() && !f.planes_dir.empty()) {
+      errors[i] = WriteFile(f.planes_dir + "/" + stem + "-planes.csv",
+                            PlaneErrorsCsv(runs[i].result.plane_errors));
+    }
+    runs[i].seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::lock_guard<std::mutex> lock(print);
+    const size_t n = ++done;
+    if (errors[i].empty()) {
+      std::printf("[%zu/%zu] %s (%.1f s)\n", n, specs.size(), RunLine(runs[i]).c_str(),
+                  runs[i].seconds);
+    } else {
+      std::printf("[%zu/%zu] %s seed %llu: failed: %s\n", n, specs.size(), runs[i].scenario.c_str(),
+                  static_cast<unsigned long long>(runs[i].seed), errors[i].c_str());
+    }
+    std::fflush(stdout);
+  });
 
   bool all_met = true;
   for (size_t i = 0; i < runs.size(); ++i) {
