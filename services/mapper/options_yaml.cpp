@@ -205,6 +205,7 @@ MapperOptions ReadMapperOptions(Reader& r) {
   gr.Read("pose_tie_angle_sigma", &o.graph.pose_tie_angle_sigma);
   gr.Read("max_iterations", &o.graph.max_iterations);
   gr.Read("robust", &o.graph.robust);
+  gr.Read("consistent", &o.graph.consistent);
   gr.Read("initial_damping", &o.graph.initial_damping);
   gr.Read("tie_min_jump", &o.graph.tie_min_jump);
   gr.Read("tie_min_turn", &o.graph.tie_min_turn);
@@ -215,6 +216,7 @@ MapperOptions ReadMapperOptions(Reader& r) {
   Positive(gr, "pose_tie_sigma", o.graph.pose_tie_sigma);
   Positive(gr, "pose_tie_angle_sigma", o.graph.pose_tie_angle_sigma);
   Positive(gr, "robust", o.graph.robust);
+  Positive(gr, "consistent", o.graph.consistent);
   if (o.graph.max_iterations < 1) gr.Fail("max_iterations", "must be at least 1");
   if (o.graph.max_pose_ties < 1) gr.Fail("max_pose_ties", "must be at least 1");
 

@@ -278,7 +278,7 @@ void BuildGlobalMap(const GlobalMapInputs& in, size_t from, const MapperOptions&
     world.loop_evidence = evidence;
     const PoseGraphResult solved = OptimiseGroupPlacements(in, world, options, grouping);
     ++world.graph_solves;
-    if (solved.cost_after < solved.cost_before) {
+    if (solved.consistent || solved.cost_after < solved.cost_before) {
       world.global.clear();
       world.placed_by.clear();
       for (Group& group : grouping.groups) PlaceMembers(in, group, options, world);

@@ -206,10 +206,13 @@ struct Normal {
   Eigen::VectorXd g;
   double cost = 0.0;
   double robust = 3.0;  // PoseGraphOptions::robust
+  // The largest squared normalised residual added (before the robust kernel).
+  double worst = 0.0;
   // Adds one residual r (weight w) with Jacobian entries over the two nodes' (x, y, yaw).
   // The Cauchy kernel (scale `robust` sigmas) weighs the residual down when it is an outlier: a
   // tie through a plane misplaced in one group's relative map must not bend the whole loop.
   void Add(double r, double w, int i, const Eigen::Vector3d& ji, int j, const Eigen::Vector3d& jj) {
+    worst = std::max(worst, w * r * r);
     const double s = w * r * r / (robust * robust);
     cost += robust * robust * std::log1p(s);
     w /= 1.0 + s;
@@ -392,6 +395,19 @@ PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMa
   Eigen::SparseMatrix<double> h(3 * n, 3 * n);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   const std::vector<ChainPrior> chain = ChainPriors(grouping, ties, x, open_information);
+  // A loop spreads an error only where there is one: with every tie within `consistent` of its
+  // sigma at the chained placements, the chain already holds the groups' shared planes within
+  // the ties' noise, and a solve would only trade the chain's errors for the ties'. The groups
+  // go back to the chain. A loop closed by backtracking (§II.A end) is solved all the same: its
+  // pose ties were made only where the closing pose jumped (tie_min_jump, tie_min_turn).
+  const Normal at_chain = Linearise(ties, pose_ties, chain, x0, x0, options);
+  if (pose_ties.empty() && at_chain.worst <= options.consistent * options.consistent) {
+    result.consistent = true;
+    result.cost_before = Linearise(ties, pose_ties, chain, x, x0, options).cost;
+    result.cost_after = at_chain.cost;
+    for (int k = 0; k < n; ++k) grouping.groups[k].placement = x0[k];
+    return result;
+  }
   Normal eq = Linearise(ties, pose_ties, chain, x, x0, options);
   result.cost_before = eq.cost;
   // Levenberg-Marquardt: a step that does not lower the cost is refused and the next one damped

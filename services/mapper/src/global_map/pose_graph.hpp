@@ -28,10 +28,16 @@ struct PoseGraphResult {
   int ties = 0;
   double cost_before = 0.0;  // sum of squared normalised residuals
   double cost_after = 0.0;
+  // No loop closed by backtracking, and every tie held within PoseGraphOptions::consistent
+  // sigmas by the chained placements: no solve, the groups were put back where the chain
+  // placed them.
+  bool consistent = false;
 };
 
 // Gauss-Newton over all group placements (world <- group frame), starting from the current
-// ones; group 0 stays where it is (anchored at the start pose, §II.D).
+// ones; group 0 stays where it is (anchored at the start pose, §II.D). None where the chained
+// placements already hold every tie and no loop closed by backtracking
+// (PoseGraphResult::consistent).
 PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMap& world,
                                         const MapperOptions& options, Grouping& grouping);
 

@@ -229,7 +229,11 @@ struct PoseGraphOptions {
   double pose_tie_sigma = 0.02;
   double pose_tie_angle_sigma = 0.01;
   int max_iterations = 10;
-  double robust = 3.0;            // sigmas: the Cauchy kernel's scale
+  double robust = 3.0;  // sigmas: the Cauchy kernel's scale
+  // sigmas: without a loop closed by backtracking, a solve runs only where the chained
+  // placements leave some tie further off than this (shared planes the chain already holds
+  // within the ties' noise have no error to spread).
+  double consistent = 3.0;
   double initial_damping = 1e-3;  // Levenberg-Marquardt, relative to the diagonal
   // A loop that closes where the chain already has the sensor has nothing to spread: no tie
   // unless the pose jumps by at least this much (m) or turns by this much (rad).
