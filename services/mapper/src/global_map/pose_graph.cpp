@@ -400,13 +400,15 @@ PoseGraphResult OptimiseGroupPlacements(const GlobalMapInputs& in, const WorldMa
   // the ties' noise, and a solve would only trade the chain's errors for the ties'. The groups
   // go back to the chain. A loop closed by backtracking (§II.A end) is solved all the same: its
   // pose ties were made only where the closing pose jumped (tie_min_jump, tie_min_turn).
-  const Normal at_chain = Linearise(ties, pose_ties, chain, x0, x0, options);
-  if (pose_ties.empty() && at_chain.worst <= options.consistent * options.consistent) {
-    result.consistent = true;
-    result.cost_before = Linearise(ties, pose_ties, chain, x, x0, options).cost;
-    result.cost_after = at_chain.cost;
-    for (int k = 0; k < n; ++k) grouping.groups[k].placement = x0[k];
-    return result;
+  if (pose_ties.empty()) {
+    const Normal at_chain = Linearise(ties, pose_ties, chain, x0, x0, options);
+    if (at_chain.worst <= options.consistent * options.consistent) {
+      result.consistent = true;
+      result.cost_before = Linearise(ties, pose_ties, chain, x, x0, options).cost;
+      result.cost_after = at_chain.cost;
+      for (int k = 0; k < n; ++k) grouping.groups[k].placement = x0[k];
+      return result;
+    }
   }
   Normal eq = Linearise(ties, pose_ties, chain, x, x0, options);
   result.cost_before = eq.cost;
